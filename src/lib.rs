@@ -1,0 +1,3 @@
+//! rigor: an exact derivation and proof checker.
+
+pub mod syntax;
