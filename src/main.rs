@@ -1,1 +1,132 @@
-fn main() {}
+//! The `rigor` command line: parses arguments, runs a command, maps results to exit statuses.
+
+use clap::{Parser, Subcommand, ValueEnum};
+use std::process::ExitCode;
+
+mod cli;
+
+/// rigor: an exact derivation and proof checker for engineering dynamics.
+#[derive(Parser)]
+#[command(name = "rigor", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+    /// Largest number of terms any intermediate polynomial may have.
+    #[arg(long, global = true, default_value_t = 200_000)]
+    max_terms: usize,
+    /// Deepest nesting of parentheses and calls accepted.
+    #[arg(long, global = true, default_value_t = 200)]
+    max_depth: usize,
+}
+
+/// Output format of `check`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Format {
+    /// Diagnostics like the Rust compiler's.
+    Human,
+    /// One JSON object per file.
+    Json,
+    /// GitHub Actions workflow-command annotations.
+    Github,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Check derivation files and folders (default: derivations/).
+    Check {
+        /// Files or folders.
+        paths: Vec<std::path::PathBuf>,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = Format::Human)]
+        format: Format,
+        /// Print how every verified link was justified.
+        #[arg(long, short)]
+        verbose: bool,
+        /// Wall-clock budget per claim, in seconds.
+        #[arg(long, default_value_t = 10.0)]
+        timeout: f64,
+        /// Largest file accepted, in bytes.
+        #[arg(long, default_value_t = 10_000_000)]
+        max_file_size: u64,
+    },
+    /// Print the normal form of an expression.
+    Simplify {
+        /// The expression.
+        #[arg(allow_hyphen_values = true)]
+        expr: String,
+        /// A sign assumption, e.g. "R > 0" or "x y >= 0" (repeatable).
+        #[arg(long)]
+        assume: Vec<String>,
+        /// A body, as in a `body` statement: "rod: dm = m/L dy, y from -L/2 to L/2" (repeatable).
+        #[arg(long)]
+        body: Vec<String>,
+        /// Print LaTeX instead of rigor's syntax.
+        #[arg(long)]
+        latex: bool,
+    },
+    /// Decide whether two expressions are equal.
+    Equiv {
+        /// Left side.
+        #[arg(allow_hyphen_values = true)]
+        a: String,
+        /// Right side.
+        #[arg(allow_hyphen_values = true)]
+        b: String,
+        /// A sign assumption (repeatable).
+        #[arg(long)]
+        assume: Vec<String>,
+        /// A body (repeatable).
+        #[arg(long)]
+        body: Vec<String>,
+    },
+    /// Write a derivation as a standalone LaTeX worked solution.
+    Latex {
+        /// The derivation file.
+        file: std::path::PathBuf,
+        /// Output file (default: standard output).
+        #[arg(short)]
+        o: Option<std::path::PathBuf>,
+    },
+    /// Write a derivation as a Markdown worked solution.
+    Markdown {
+        /// The derivation file.
+        file: std::path::PathBuf,
+        /// Output file (default: standard output).
+        #[arg(short)]
+        o: Option<std::path::PathBuf>,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let _ = e.print();
+            return ExitCode::from(code);
+        }
+    };
+    rigor::normal::poly::set_max_terms(cli.max_terms);
+    let opts = rigor::syntax::ParseOptions {
+        max_depth: cli.max_depth,
+    };
+    let code = match cli.command {
+        Command::Simplify {
+            expr,
+            assume,
+            body,
+            latex,
+        } => cli::simplify(&expr, &assume, &body, latex, &opts),
+        Command::Equiv { a, b, assume, body } => cli::equiv(&a, &b, &assume, &body, &opts),
+        Command::Check {
+            paths,
+            format,
+            verbose,
+            timeout,
+            max_file_size,
+        } => cli::check(&paths, format, verbose, timeout, max_file_size, &opts),
+        Command::Latex { file, o } => cli::document(&file, o.as_deref(), true, &opts),
+        Command::Markdown { file, o } => cli::document(&file, o.as_deref(), false, &opts),
+    };
+    ExitCode::from(code)
+}

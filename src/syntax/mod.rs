@@ -1,3 +1,17 @@
 //! Text to syntax tree: nom parsers for expressions (FORMAT.md §1) and derivation files (§2).
 
 pub mod ast;
+pub mod error;
+pub mod expr;
+pub mod file;
+
+mod chain;
+mod lex;
+mod stmt;
+
+#[cfg(test)]
+mod tests;
+
+pub use error::{ParseOptions, SyntaxError};
+pub use expr::{parse_chain, parse_expr};
+pub use file::parse_file;

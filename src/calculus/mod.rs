@@ -1,0 +1,9 @@
+//! Calculus on normal forms: derivatives, exact integrals, and integrals over bodies.
+
+pub mod body;
+pub mod diff;
+pub mod integrate;
+
+pub use body::Body;
+pub use diff::{diff, diff_n, Wrt};
+pub use integrate::{antiderivative, definite, IntError};

@@ -1,0 +1,350 @@
+//! Deciding `A = B`: equal by normal form, not equal by an exact argument or a
+//! checked counterexample, else undecided. Nothing is ever decided equal by sampling.
+
+use crate::interval::{Interval, Prec};
+use crate::normal::atom::{self, Atom, AtomId};
+use crate::normal::print::plain;
+use crate::normal::{Assumptions, Poly, Rat, Sign, Q};
+use num_bigint::BigInt;
+use num_traits::{One, Signed, ToPrimitive, Zero};
+use std::collections::{BTreeMap, HashMap};
+
+/// Values of the symbols at which two sides differ, and the sides' values there.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Counterexample {
+    /// `symbol = value`, sorted by name.
+    pub values: Vec<(String, Q)>,
+    /// The left side's value (exact, or a decimal approximation with `≈`).
+    pub lhs: String,
+    /// The right side's value.
+    pub rhs: String,
+}
+
+impl Counterexample {
+    /// `m = 2, L = 3`.
+    pub fn assignment(&self) -> String {
+        self.values
+            .iter()
+            .map(|(n, q)| format!("{n} = {}", show_q(q)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
+fn show_q(q: &Q) -> String {
+    if q.denom().is_one() {
+        q.numer().to_string()
+    } else {
+        format!("{}/{}", q.numer(), q.denom())
+    }
+}
+
+/// The answer to `A = B`.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Verdict {
+    /// `A − B` normalises to exactly zero.
+    Equal,
+    /// Established unequal.
+    NotEqual {
+        /// `A − B` in normal form.
+        difference: Rat,
+        /// Whether the difference is a nonzero rational function of independent atoms.
+        exact: bool,
+        /// A checked counterexample, where one was found.
+        counterexample: Option<Counterexample>,
+        /// A one-line diagnosis of the difference, when it is simple.
+        diagnosis: Option<String>,
+    },
+    /// Neither could be established.
+    Undecided {
+        /// Why.
+        why: String,
+    },
+}
+
+/// Decides `a = b` under the declared signs.
+pub fn decide(a: &Rat, b: &Rat, s: &Assumptions) -> Verdict {
+    let d = match a.sub(b) {
+        Ok(d) => d,
+        Err(e) => {
+            return Verdict::Undecided {
+                why: format!("could not form the difference: {e}"),
+            }
+        }
+    };
+    if d.is_zero() {
+        return Verdict::Equal;
+    }
+    let exact = independent(&d);
+    let counterexample = find_counterexample(a, b, s);
+    if !exact && counterexample.is_none() {
+        let dependent: Vec<String> = d
+            .atoms()
+            .into_iter()
+            .filter(|x| !independent_atom(*x))
+            .map(|x| crate::normal::print::atom_plain(&atom::get(x)))
+            .collect();
+        return Verdict::Undecided {
+            why: format!(
+                "the difference {} is not zero in normal form, but it involves {}, between which rigor cannot rule out further relations, and no checked counterexample was found",
+                plain(&d),
+                dependent.join(", ")
+            ),
+        };
+    }
+    Verdict::NotEqual {
+        diagnosis: diagnose(a, b, &d),
+        difference: d,
+        exact,
+        counterexample,
+    }
+}
+
+/// Atoms that satisfy no algebraic relation rigor does not already apply.
+fn independent_atom(a: AtomId) -> bool {
+    match &*atom::get(a) {
+        Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => true,
+        // Square roots of distinct primes (rigor splits numeric radicands into primes
+        // by trial division up to 10⁴, so a radicand below 10⁸ is a prime).
+        Atom::Sqrt(p) => p
+            .as_constant()
+            .is_some_and(|q| q.is_integer() && q.to_integer() < BigInt::from(100_000_000)),
+        _ => false,
+    }
+}
+
+/// Whether every atom of `r` is independent, so a nonzero normal form is a nonzero function.
+pub fn independent(r: &Rat) -> bool {
+    r.atoms().into_iter().all(independent_atom)
+}
+
+/// A one-line description of how `a` differs from `b`.
+pub fn diagnose(a: &Rat, b: &Rat, d: &Rat) -> Option<String> {
+    if b.is_zero() {
+        return Some("the right side is 0 but the left side is not".into());
+    }
+    if a.is_zero() {
+        return Some("the left side is 0 but the right side is not".into());
+    }
+    if let Ok(r) = a.div(b) {
+        if let Some(c) = r.as_constant() {
+            if c == -Q::one() {
+                return Some("the two sides have opposite signs (a sign error?)".into());
+            }
+            return Some(format!(
+                "the left side is {} × the right side (a constant factor)",
+                show_q(&c)
+            ));
+        }
+        if r.num().len() == 1 && r.den().len() == 1 {
+            let note = if r.atoms().len() == 1 {
+                "a wrong power?"
+            } else {
+                "a missing or extra factor?"
+            };
+            return Some(format!("the left side is {} × the right side ({note})", plain(&r)));
+        }
+    }
+    if d.num().len() == 1 {
+        let t = plain(d);
+        let neg = plain(&d.neg());
+        if has_term(a, d) {
+            return Some(format!("the left side has an extra term {t}"));
+        }
+        if has_term(b, &d.neg()) {
+            return Some(format!("the left side is missing the term {neg}"));
+        }
+        return Some(format!("the two sides differ by {t} (left − right)"));
+    }
+    None
+}
+
+/// Whether the single-term `t` is one of the terms of `r` (over the same denominator).
+fn has_term(r: &Rat, t: &Rat) -> bool {
+    if r.den() != t.den() {
+        return false;
+    }
+    t.num()
+        .terms()
+        .first()
+        .is_some_and(|tt| r.num().terms().iter().any(|x| x == tt))
+}
+
+/// Symbols occurring anywhere in `r`, arguments of functions included.
+pub fn symbols_in(r: &Rat, out: &mut Vec<AtomId>) {
+    for a in r.atoms() {
+        symbols_in_atom(a, out);
+    }
+}
+
+fn symbols_in_poly(p: &Poly, out: &mut Vec<AtomId>) {
+    for a in p.atoms() {
+        symbols_in_atom(a, out);
+    }
+}
+
+fn symbols_in_atom(a: AtomId, out: &mut Vec<AtomId>) {
+    match &*atom::get(a) {
+        Atom::Sym(_) => {
+            if !out.contains(&a) {
+                out.push(a)
+            }
+        }
+        Atom::Pi | Atom::Moment(..) => {}
+        Atom::Sqrt(p) | Atom::Root(p, _) | Atom::Abs(p) => symbols_in_poly(p, out),
+        Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) => symbols_in(u, out),
+        Atom::Pow(b, e) => {
+            symbols_in(b, out);
+            symbols_in(e, out);
+        }
+    }
+}
+
+const CANDIDATES: [(i64, i64); 12] = [
+    (2, 1),
+    (3, 1),
+    (1, 2),
+    (5, 1),
+    (7, 3),
+    (11, 4),
+    (13, 1),
+    (3, 5),
+    (17, 2),
+    (19, 7),
+    (23, 3),
+    (29, 11),
+];
+
+/// Searches a few points that respect the declared signs for one where `a` and `b`
+/// provably differ (exact rationals, or disjoint rigorous enclosures).
+pub fn find_counterexample(a: &Rat, b: &Rat, s: &Assumptions) -> Option<Counterexample> {
+    let mut syms = Vec::new();
+    symbols_in(a, &mut syms);
+    symbols_in(b, &mut syms);
+    syms.sort_by(|x, y| atom::cmp_atoms(*x, *y));
+    for k in 0..10usize {
+        let mut point: HashMap<AtomId, Q> = HashMap::new();
+        for (i, sym) in syms.iter().enumerate() {
+            let (n, d) = CANDIDATES[(i * 5 + k * 7 + k / 3) % CANDIDATES.len()];
+            let mut q = Q::new(BigInt::from(n), BigInt::from(d));
+            let sign = s.declared(*sym);
+            if matches!(sign, Sign::Unknown | Sign::NonZero) && (i + k) % 3 == 1 {
+                q = -q;
+            }
+            if matches!(sign, Sign::Neg | Sign::NonPos) {
+                q = -q;
+            }
+            point.insert(*sym, q);
+        }
+        let mut ev = Evaluator {
+            point: &point,
+            prec: Prec::default(),
+            memo: HashMap::new(),
+        };
+        let (Some(va), Some(vb)) = (ev.rat(a), ev.rat(b)) else {
+            continue;
+        };
+        if va.disjoint(&vb) {
+            let show = |v: &Interval| {
+                if v.lo() == v.hi() {
+                    show_q(v.lo())
+                } else {
+                    format!("≈ {}", v.to_decimal_string(8))
+                }
+            };
+            let mut values: BTreeMap<String, Q> = BTreeMap::new();
+            for (sym, q) in &point {
+                if let Some(n) = atom::sym_name(*sym) {
+                    values.insert(n, q.clone());
+                }
+            }
+            return Some(Counterexample {
+                values: values.into_iter().collect(),
+                lhs: show(&va),
+                rhs: show(&vb),
+            });
+        }
+    }
+    None
+}
+
+/// Rigorous evaluation of normal forms at a rational point.
+pub struct Evaluator<'a> {
+    /// Values of the symbols.
+    pub point: &'a HashMap<AtomId, Q>,
+    /// Working precision.
+    pub prec: Prec,
+    memo: HashMap<AtomId, Option<Interval>>,
+}
+
+impl<'a> Evaluator<'a> {
+    /// An evaluator at `point`.
+    pub fn new(point: &'a HashMap<AtomId, Q>) -> Evaluator<'a> {
+        Evaluator {
+            point,
+            prec: Prec::default(),
+            memo: HashMap::new(),
+        }
+    }
+
+    /// An enclosure of `r` at the point, `None` where undefined or not evaluable.
+    pub fn rat(&mut self, r: &Rat) -> Option<Interval> {
+        let n = self.poly(r.num())?;
+        if r.den().is_one() {
+            return Some(n);
+        }
+        let d = self.poly(r.den())?;
+        n.div(&d, self.prec)
+    }
+
+    fn poly(&mut self, p: &Poly) -> Option<Interval> {
+        let mut total = Interval::point(Q::zero());
+        for (m, q) in p.terms() {
+            let mut t = Interval::point(q.clone());
+            for &(a, e) in m.pairs() {
+                let v = self.atom(a)?;
+                t = t.mul(&v.powi(i64::from(e), self.prec)?, self.prec)?;
+            }
+            total = total.add(&t, self.prec)?;
+        }
+        Some(total)
+    }
+
+    fn atom(&mut self, a: AtomId) -> Option<Interval> {
+        if let Some(v) = self.memo.get(&a) {
+            return v.clone();
+        }
+        let v = self.atom_uncached(a);
+        self.memo.insert(a, v.clone());
+        v
+    }
+
+    fn atom_uncached(&mut self, a: AtomId) -> Option<Interval> {
+        let p = self.prec;
+        match &*atom::get(a) {
+            Atom::Sym(_) => self.point.get(&a).map(|q| Interval::point(q.clone())),
+            Atom::Pi => Interval::pi(p),
+            Atom::Sqrt(x) => self.poly(x)?.sqrt(p),
+            Atom::Root(..) | Atom::Moment(..) => None,
+            Atom::Abs(x) => self.poly(x)?.abs(),
+            Atom::Sin(u) => self.rat(u)?.sin(p),
+            Atom::Cos(u) => self.rat(u)?.cos(p),
+            Atom::Exp(u) => self.rat(u)?.exp(p),
+            Atom::Ln(u) => self.rat(u)?.ln(p),
+            Atom::Pow(b, e) => {
+                let bv = self.rat(b)?;
+                match e.as_constant() {
+                    Some(q) if q.is_integer() => bv.powi(q.to_integer().to_i64()?, p),
+                    _ => {
+                        if !bv.is_positive() {
+                            return None;
+                        }
+                        let ev = self.rat(e)?;
+                        ev.mul(&bv.ln(p)?, p)?.exp(p)
+                    }
+                }
+            }
+        }
+    }
+}
+

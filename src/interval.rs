@@ -1,0 +1,977 @@
+//! Rigorous interval arithmetic over exact rationals with outward dyadic rounding.
+//!
+//! This module is used only to *prove* that two values differ (disjoint
+//! enclosures) or to prove signs (an enclosure entirely above or below zero).
+//! It can never establish equality. Every operation returns an enclosure that
+//! is guaranteed to contain the exact mathematical result; endpoints are
+//! rounded outward (lower endpoint down, upper endpoint up) to dyadic
+//! rationals with a bounded number of significant bits, so sizes stay small.
+//! Operations return `None` when the result is undefined (e.g. division by an
+//! interval containing zero) or cannot be bounded within the size limits.
+//! No floating point is used anywhere.
+
+use num_bigint::{BigInt, BigUint};
+use num_integer::Integer;
+use num_rational::BigRational;
+use num_traits::{One, Signed, ToPrimitive, Zero};
+use std::cmp::Ordering;
+
+/// Largest binary exponent (in absolute value) an endpoint may have;
+/// operations whose result would exceed it return `None`.
+pub const MAX_EXP: i64 = 1 << 20;
+/// Largest exponent magnitude accepted by [`Interval::powi`].
+pub const MAX_POWI: i64 = 1_000_000;
+/// Largest argument magnitude accepted by `sin`, `cos` and `tan`.
+pub const MAX_TRIG_ARG: i64 = 1 << 20;
+/// Largest argument magnitude accepted by `exp`.
+pub const MAX_EXP_ARG: i64 = 1 << 19;
+/// Safety cap on the number of series terms.
+const MAX_TERMS: u32 = 200_000;
+
+/// Working precision: endpoints keep `bits` significant bits after every
+/// operation (clamped internally to `8..=65536`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Prec {
+    /// Number of significant bits kept in each endpoint.
+    pub bits: u32,
+}
+
+impl Default for Prec {
+    fn default() -> Self {
+        Prec { bits: 96 }
+    }
+}
+
+impl Prec {
+    /// A precision of `bits` significant bits.
+    pub const fn new(bits: u32) -> Prec {
+        Prec { bits }
+    }
+    fn eff(self) -> u32 {
+        self.bits.clamp(8, 1 << 16)
+    }
+    fn plus(self, extra: u32) -> Prec {
+        Prec {
+            bits: self.eff().saturating_add(extra),
+        }
+    }
+}
+
+/// A closed interval `[lo, hi]` of rationals with `lo <= hi`.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Interval {
+    lo: BigRational,
+    hi: BigRational,
+}
+
+fn rat(n: i64) -> BigRational {
+    BigRational::from_integer(BigInt::from(n))
+}
+
+/// `2^e` exactly.
+fn two_pow(e: i64) -> BigRational {
+    let p = BigInt::one() << (e.unsigned_abs() as usize);
+    if e >= 0 {
+        BigRational::from_integer(p)
+    } else {
+        BigRational::new_raw(BigInt::one(), p)
+    }
+}
+
+/// Approximate binary magnitude: for `q != 0`, `2^(m-1) < |q| < 2^(m+1)`.
+fn mag(q: &BigRational) -> i64 {
+    q.numer().bits() as i64 - q.denom().bits() as i64
+}
+
+/// Round `q` to a dyadic with about `bits` significant bits, down or up.
+fn round(q: &BigRational, bits: u32, up: bool) -> Option<BigRational> {
+    round_frac(q.numer(), q.denom(), bits, up)
+}
+
+/// Round the (possibly unreduced) fraction `n / d` like [`round`]; `d != 0`.
+fn round_frac(n: &BigInt, d: &BigInt, bits: u32, up: bool) -> Option<BigRational> {
+    if d.is_zero() {
+        return None;
+    }
+    if n.is_zero() {
+        return Some(BigRational::zero());
+    }
+    let e = n.bits() as i64 - d.bits() as i64;
+    if e.abs() > MAX_EXP {
+        return None;
+    }
+    let s = bits as i64 + 1 - e;
+    let (n, d) = scaled(n, d, s);
+    let m = if up {
+        -((-n).div_floor(&d))
+    } else {
+        n.div_floor(&d)
+    };
+    Some(dyadic(m, -s))
+}
+
+/// The fraction `(n * 2^s) / d`, unreduced.
+fn scaled(n: &BigInt, d: &BigInt, s: i64) -> Frac {
+    let sh = s.unsigned_abs() as usize;
+    if s >= 0 {
+        (n << sh, d.clone())
+    } else {
+        (n.clone(), d << sh)
+    }
+}
+
+/// An unreduced fraction `(n, d)` with `d > 0`.
+type Frac = (BigInt, BigInt);
+
+/// Fraction with the sign moved to the numerator.
+fn fr(n: BigInt, d: BigInt) -> Frac {
+    if d.is_negative() {
+        (-n, -d)
+    } else {
+        (n, d)
+    }
+}
+
+fn frac(q: &BigRational) -> Frac {
+    fr(q.numer().clone(), q.denom().clone())
+}
+
+/// Compare fractions by cross-multiplication (cheaper than `Ratio`'s `Ord`).
+fn fcmp(a: &Frac, b: &Frac) -> Ordering {
+    (&a.0 * &b.1).cmp(&(&b.0 * &a.1))
+}
+
+/// `a + sign * b` as an unreduced fraction.
+fn fsum(a: &BigRational, b: &BigRational, sign: i32) -> Frac {
+    let bn = b.numer() * BigInt::from(sign);
+    if a.denom() == b.denom() {
+        return fr(a.numer() + bn, a.denom().clone());
+    }
+    fr(
+        a.numer() * b.denom() + bn * a.denom(),
+        a.denom() * b.denom(),
+    )
+}
+
+fn qlt(a: &BigRational, b: &BigRational) -> bool {
+    fcmp(&frac(a), &frac(b)) == Ordering::Less
+}
+
+/// `m * 2^e` as a reduced rational, built without a gcd.
+fn dyadic(m: BigInt, e: i64) -> BigRational {
+    if e >= 0 || m.is_zero() {
+        return BigRational::from_integer(m << (e.max(0) as usize));
+    }
+    let tz = m.trailing_zeros().unwrap_or(0).min(e.unsigned_abs());
+    let den = BigInt::one() << ((e.unsigned_abs() - tz) as usize);
+    BigRational::new_raw(m >> (tz as usize), den)
+}
+
+/// Rigorous bound on `sqrt(q)` for `q >= 0` (lower if `!up`, upper if `up`).
+fn sqrt_bound(q: &BigRational, bits: u32, up: bool) -> Option<BigRational> {
+    if q.is_zero() {
+        return Some(q.clone());
+    }
+    let e = mag(q);
+    if e.abs() > MAX_EXP || q.is_negative() {
+        return None;
+    }
+    let s = bits as i64 + 2 - e / 2;
+    let (n, d) = scaled(q.numer(), q.denom(), 2 * s);
+    let (n, d): (BigUint, BigUint) = (n.to_biguint()?, d.to_biguint()?);
+    let (t, rem) = n.div_rem(&d);
+    let r = if up {
+        let t = if rem.is_zero() { t } else { t + 1u32 };
+        let r = t.sqrt();
+        if &r * &r < t {
+            r + 1u32
+        } else {
+            r
+        }
+    } else {
+        t.sqrt()
+    };
+    Some(BigRational::from_integer(BigInt::from(r)) * two_pow(-s))
+}
+
+/// Rigorous bound on `a^n` for `a >= 0`, `n >= 1` via rounded binary powering.
+fn pow_bound(a: &BigRational, n: u64, bits: u32, up: bool) -> Option<BigRational> {
+    let mut result = BigRational::one();
+    let mut base = round(a, bits, up)?;
+    let mut k = n;
+    loop {
+        if k & 1 == 1 {
+            result = round(&(&result * &base), bits, up)?;
+        }
+        k >>= 1;
+        if k == 0 {
+            return Some(result);
+        }
+        base = round(&(&base * &base), bits, up)?;
+    }
+}
+
+impl Interval {
+    /// The degenerate interval `[q, q]` (exact, not rounded).
+    pub fn point(q: BigRational) -> Interval {
+        Interval {
+            lo: q.clone(),
+            hi: q,
+        }
+    }
+
+    /// The interval `[lo, hi]`, or `None` if `lo > hi`. Endpoints are kept exactly.
+    pub fn new(lo: BigRational, hi: BigRational) -> Option<Interval> {
+        if lo <= hi {
+            Some(Interval { lo, hi })
+        } else {
+            None
+        }
+    }
+
+    fn int(n: i64) -> Interval {
+        Interval::point(rat(n))
+    }
+
+    /// Build `[lo, hi]` with endpoints rounded outward to precision `p`.
+    fn mk(lo: BigRational, hi: BigRational, p: Prec) -> Option<Interval> {
+        Interval::mk_frac(frac(&lo), frac(&hi), p)
+    }
+
+    fn mk_frac(lo: Frac, hi: Frac, p: Prec) -> Option<Interval> {
+        let lo = round_frac(&lo.0, &lo.1, p.eff(), false)?;
+        let hi = round_frac(&hi.0, &hi.1, p.eff(), true)?;
+        (!qlt(&hi, &lo)).then_some(Interval { lo, hi })
+    }
+
+    /// `self + t` or `self - t`.
+    fn add_signed(&self, t: &Interval, minus: bool, p: Prec) -> Option<Interval> {
+        if minus {
+            self.sub(t, p)
+        } else {
+            self.add(t, p)
+        }
+    }
+
+    fn widen(self, err: &BigRational) -> Interval {
+        Interval {
+            lo: self.lo - err,
+            hi: self.hi + err,
+        }
+    }
+
+    /// Largest absolute value of a member, `max(|lo|, |hi|)`.
+    fn mag_bound(&self) -> BigRational {
+        let (a, b) = (self.lo.abs(), self.hi.abs());
+        if qlt(&a, &b) {
+            b
+        } else {
+            a
+        }
+    }
+
+    /// Lower endpoint.
+    pub fn lo(&self) -> &BigRational {
+        &self.lo
+    }
+
+    /// Upper endpoint.
+    pub fn hi(&self) -> &BigRational {
+        &self.hi
+    }
+
+    /// True if the two enclosures share no point, which proves the enclosed values differ.
+    pub fn disjoint(&self, other: &Interval) -> bool {
+        self.hi < other.lo || other.hi < self.lo
+    }
+
+    /// True if every member is strictly positive (`lo > 0`).
+    pub fn is_positive(&self) -> bool {
+        self.lo.is_positive()
+    }
+
+    /// True if every member is strictly negative (`hi < 0`).
+    pub fn is_negative(&self) -> bool {
+        self.hi.is_negative()
+    }
+
+    /// True if `lo <= 0 <= hi`.
+    pub fn contains_zero(&self) -> bool {
+        !self.is_positive() && !self.is_negative()
+    }
+
+    /// True if `lo <= q <= hi`.
+    pub fn contains(&self, q: &BigRational) -> bool {
+        &self.lo <= q && q <= &self.hi
+    }
+
+    /// `hi - lo`.
+    pub fn width(&self) -> BigRational {
+        &self.hi - &self.lo
+    }
+
+    /// `(lo + hi) / 2`.
+    pub fn midpoint(&self) -> BigRational {
+        (&self.lo + &self.hi) / rat(2)
+    }
+
+    /// Smallest interval containing both `self` and `other`.
+    pub fn hull(&self, other: &Interval) -> Interval {
+        Interval {
+            lo: std::cmp::min(&self.lo, &other.lo).clone(),
+            hi: std::cmp::max(&self.hi, &other.hi).clone(),
+        }
+    }
+
+    /// Enclosure of `x + y`.
+    pub fn add(&self, other: &Interval, p: Prec) -> Option<Interval> {
+        Interval::mk_frac(
+            fsum(&self.lo, &other.lo, 1),
+            fsum(&self.hi, &other.hi, 1),
+            p,
+        )
+    }
+
+    /// Enclosure of `x - y`.
+    pub fn sub(&self, other: &Interval, p: Prec) -> Option<Interval> {
+        Interval::mk_frac(
+            fsum(&self.lo, &other.hi, -1),
+            fsum(&self.hi, &other.lo, -1),
+            p,
+        )
+    }
+
+    /// Exact negation `[-hi, -lo]` (never `None`; `Option` for uniformity).
+    pub fn neg(&self) -> Option<Interval> {
+        Some(Interval {
+            lo: -&self.hi,
+            hi: -&self.lo,
+        })
+    }
+
+    /// Enclosure of `|x|`.
+    pub fn abs(&self) -> Option<Interval> {
+        if !self.lo.is_negative() {
+            Some(self.clone())
+        } else if !self.hi.is_positive() {
+            self.neg()
+        } else {
+            Some(Interval {
+                lo: BigRational::zero(),
+                hi: self.mag_bound(),
+            })
+        }
+    }
+
+    fn hull_of(v: [Frac; 4], p: Prec) -> Option<Interval> {
+        let lo = v.iter().min_by(|a, b| fcmp(a, b))?.clone();
+        let hi = v.iter().max_by(|a, b| fcmp(a, b))?.clone();
+        Interval::mk_frac(lo, hi, p)
+    }
+
+    /// Enclosure of `x * y`.
+    pub fn mul(&self, other: &Interval, p: Prec) -> Option<Interval> {
+        let (a, b, c, d) = (&self.lo, &self.hi, &other.lo, &other.hi);
+        let m = |x: &BigRational, y: &BigRational| fr(x.numer() * y.numer(), x.denom() * y.denom());
+        Interval::hull_of([m(a, c), m(a, d), m(b, c), m(b, d)], p)
+    }
+
+    /// Enclosure of `1 / x`; `None` if `x` contains zero.
+    pub fn recip(&self, p: Prec) -> Option<Interval> {
+        if self.contains_zero() {
+            return None;
+        }
+        Interval::mk(self.hi.recip(), self.lo.recip(), p)
+    }
+
+    /// Enclosure of `x / y`; `None` if `y` contains zero.
+    pub fn div(&self, other: &Interval, p: Prec) -> Option<Interval> {
+        if other.contains_zero() {
+            return None;
+        }
+        let (a, b, c, d) = (&self.lo, &self.hi, &other.lo, &other.hi);
+        let q = |x: &BigRational, y: &BigRational| fr(x.numer() * y.denom(), x.denom() * y.numer());
+        Interval::hull_of([q(a, c), q(a, d), q(b, c), q(b, d)], p)
+    }
+
+    /// Enclosure of `x^n`. `x^0 = 1`; negative `n` uses `recip` (so `None` if
+    /// `x` contains zero). `None` if `|n| > MAX_POWI` or the result is too large.
+    pub fn powi(&self, n: i64, p: Prec) -> Option<Interval> {
+        if n.unsigned_abs() > MAX_POWI as u64 {
+            return None;
+        }
+        if n < 0 {
+            return self.powi(-n, p)?.recip(p);
+        }
+        if n == 0 {
+            return Some(Interval::int(1));
+        }
+        let big = self.mag_bound();
+        if !big.is_zero() && mag(&big).saturating_mul(n).unsigned_abs() > (MAX_EXP + 64) as u64 {
+            return None;
+        }
+        let wp = p.plus(32).eff() + 32;
+        let un = n as u64;
+        // A lower bound on a^n for a >= 0; 0 is a safe fallback on underflow.
+        let down = |a: &BigRational| pow_bound(a, un, wp, false).unwrap_or_else(BigRational::zero);
+        let up = |a: &BigRational| pow_bound(a, un, wp, true);
+        let (lo, hi) = if n % 2 == 1 {
+            let lo = if self.lo.is_negative() {
+                -up(&-&self.lo)?
+            } else {
+                down(&self.lo)
+            };
+            let hi = if self.hi.is_negative() {
+                -down(&-&self.hi)
+            } else {
+                up(&self.hi)?
+            };
+            (lo, hi)
+        } else if !self.lo.is_negative() {
+            (down(&self.lo), up(&self.hi)?)
+        } else if !self.hi.is_positive() {
+            (down(&-&self.hi), up(&-&self.lo)?)
+        } else {
+            (BigRational::zero(), up(&big)?)
+        };
+        Interval::mk(lo, hi, p)
+    }
+
+    /// Enclosure of `sqrt(x)`; `None` unless `lo >= 0`.
+    pub fn sqrt(&self, p: Prec) -> Option<Interval> {
+        if self.lo.is_negative() {
+            return None;
+        }
+        let b = p.eff() + 4;
+        Interval::mk(
+            sqrt_bound(&self.lo, b, false)?,
+            sqrt_bound(&self.hi, b, true)?,
+            p,
+        )
+    }
+
+    /// Enclosure of `pi` (Machin's formula with alternating-series remainders).
+    pub fn pi(p: Prec) -> Option<Interval> {
+        let wp = p.plus(16);
+        let a = atan_inv(5, wp)?.mul(&Interval::int(16), wp)?;
+        let b = atan_inv(239, wp)?.mul(&Interval::int(4), wp)?;
+        let r = a.sub(&b, wp)?;
+        Interval::mk(r.lo, r.hi, p)
+    }
+
+    /// Enclosure of `exp(x)`; `None` if `|x| > MAX_EXP_ARG`.
+    pub fn exp(&self, p: Prec) -> Option<Interval> {
+        self.increasing(p, exp_point)
+    }
+
+    /// Apply an increasing function given by point enclosures to both endpoints.
+    fn increasing(
+        &self,
+        p: Prec,
+        f: fn(&BigRational, Prec) -> Option<Interval>,
+    ) -> Option<Interval> {
+        let lo = f(&self.lo, p)?;
+        let hi = if self.lo == self.hi {
+            lo.clone()
+        } else {
+            f(&self.hi, p)?
+        };
+        Interval::mk(lo.lo, hi.hi, p)
+    }
+
+    /// Enclosure of the natural logarithm; `None` unless `lo > 0`.
+    pub fn ln(&self, p: Prec) -> Option<Interval> {
+        if !self.lo.is_positive() {
+            return None;
+        }
+        self.increasing(p, ln_point)
+    }
+
+    /// Enclosure of `sin(x)`; `None` if `|x| > MAX_TRIG_ARG`.
+    pub fn sin(&self, p: Prec) -> Option<Interval> {
+        self.trig(p, false)
+    }
+
+    /// Enclosure of `cos(x)`; `None` if `|x| > MAX_TRIG_ARG`.
+    pub fn cos(&self, p: Prec) -> Option<Interval> {
+        self.trig(p, true)
+    }
+
+    /// Enclosure of `tan(x) = sin(x) / cos(x)`; `None` if the cosine
+    /// enclosure contains zero or `|x| > MAX_TRIG_ARG`.
+    pub fn tan(&self, p: Prec) -> Option<Interval> {
+        self.sin(p)?.div(&self.cos(p)?, p)
+    }
+
+    fn trig(&self, p: Prec, cos: bool) -> Option<Interval> {
+        if self.mag_bound() > rat(MAX_TRIG_ARG) {
+            return None;
+        }
+        if self.width() > rat(7) {
+            return Interval::new(rat(-1), rat(1));
+        }
+        let pick = |q: &BigRational| -> Option<Interval> {
+            let (s, c) = sincos_point(q, p)?;
+            Some(if cos { c } else { s })
+        };
+        let mut res = pick(&self.lo)?;
+        if self.lo != self.hi {
+            res = res.hull(&pick(&self.hi)?);
+            // Include the extreme values if a critical point may lie inside.
+            let wp = p.plus(8);
+            let pi = Interval::pi(wp)?;
+            let two_pi = pi.mul(&Interval::int(2), wp)?;
+            let half_pi = pi.div(&Interval::int(2), wp)?;
+            let (max_at, min_at) = if cos {
+                (Interval::int(0), pi)
+            } else {
+                (half_pi.clone(), half_pi.neg()?)
+            };
+            let hits = |off: &Interval| -> Option<bool> {
+                let t = self.sub(off, wp)?.div(&two_pi, wp)?;
+                Some(t.lo.ceil() <= t.hi.floor())
+            };
+            if hits(&max_at)? {
+                res.hi = std::cmp::max(res.hi, rat(1));
+            }
+            if hits(&min_at)? {
+                res.lo = std::cmp::min(res.lo, rat(-1));
+            }
+        }
+        let lo = std::cmp::max(res.lo, rat(-1));
+        let hi = std::cmp::min(res.hi, rat(1));
+        Interval::mk(lo, hi, p)
+    }
+
+    /// Short decimal approximation of the midpoint with about `digits`
+    /// significant digits, e.g. `0.70710678` (diagnostics only).
+    pub fn to_decimal_string(&self, digits: usize) -> String {
+        decimal(&self.midpoint(), digits.clamp(1, 1000))
+    }
+}
+
+impl std::fmt::Display for Interval {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "[{}, {}]", decimal(&self.lo, 12), decimal(&self.hi, 12))
+    }
+}
+
+/// `atan(1/n)` for integer `n >= 2` by the alternating Taylor series.
+fn atan_inv(n: i64, wp: Prec) -> Option<Interval> {
+    let x = Interval::point(BigRational::new(BigInt::one(), BigInt::from(n)));
+    let x2 = x.mul(&x, wp)?;
+    let tiny = two_pow(-(wp.bits as i64) - 4);
+    let mut pow = x.clone();
+    let mut sum = Interval::int(0);
+    for k in 0..MAX_TERMS {
+        if qlt(&pow.hi, &tiny) {
+            // Alternating series with decreasing terms: tail <= first omitted term.
+            return Some(sum.widen(&pow.hi));
+        }
+        let term = pow.div(&Interval::int(2 * k as i64 + 1), wp)?;
+        sum = sum.add_signed(&term, k % 2 == 1, wp)?;
+        pow = pow.mul(&x2, wp)?;
+    }
+    None
+}
+
+/// `2 atanh(z) = ln((1+z)/(1-z))` for rational `|z| <= 1/3`.
+fn atanh2(z: &BigRational, wp: Prec) -> Option<Interval> {
+    if z.abs() > BigRational::new(BigInt::one(), BigInt::from(3)) {
+        return None;
+    }
+    let z = Interval::point(z.clone());
+    let z2 = z.mul(&z, wp)?;
+    let tiny = two_pow(-(wp.bits as i64) - 4);
+    let mut pow = z;
+    let mut sum = Interval::int(0);
+    for j in 0..MAX_TERMS {
+        let m = pow.mag_bound();
+        if qlt(&m, &tiny) {
+            // Tail <= |z|^(2j+1) / (1 - z^2) <= (9/8) |z|^(2j+1) <= 2 m.
+            return sum.widen(&(m * rat(2))).mul(&Interval::int(2), wp);
+        }
+        sum = sum.add(&pow.div(&Interval::int(2 * j as i64 + 1), wp)?, wp)?;
+        pow = pow.mul(&z2, wp)?;
+    }
+    None
+}
+
+fn ln_point(q: &BigRational, p: Prec) -> Option<Interval> {
+    let e = mag(q);
+    if e.abs() > MAX_EXP || !q.is_positive() {
+        return None;
+    }
+    let wp = p.plus(24 + 64 - e.unsigned_abs().leading_zeros());
+    let m = q * two_pow(-e); // in (1/2, 2)
+    let one = BigRational::one();
+    let res = atanh2(&((&m - &one) / (&m + &one)), wp)?;
+    if e == 0 {
+        return Some(res);
+    }
+    let ln2 = atanh2(&BigRational::new(BigInt::one(), BigInt::from(3)), wp)?;
+    res.add(&ln2.mul(&Interval::int(e), wp)?, wp)
+}
+
+fn exp_point(q: &BigRational, p: Prec) -> Option<Interval> {
+    if q.abs() > rat(MAX_EXP_ARG) {
+        return None;
+    }
+    if q.is_zero() {
+        return Some(Interval::int(1));
+    }
+    let k = (mag(q) + 9).max(0); // |q / 2^k| < 2^-8
+    let wp = p.plus(k as u32 + 16);
+    let r = Interval::point(q * two_pow(-k));
+    let tiny = two_pow(-(wp.bits as i64) - 4);
+    let mut sum = Interval::int(1);
+    let mut term = Interval::int(1);
+    for j in 1..MAX_TERMS {
+        term = term.mul(&r, wp)?.div(&Interval::int(j as i64), wp)?;
+        let m = term.mag_bound();
+        if qlt(&m, &tiny) {
+            // Tail from term j on: ratio of successive terms <= |r|/(j+1) <= 1/2.
+            let mut s = sum.widen(&(m * rat(2)));
+            for _ in 0..k {
+                s = s.mul(&s, wp)?;
+            }
+            return Some(s);
+        }
+        sum = sum.add(&term, wp)?;
+    }
+    None
+}
+
+/// Taylor enclosures of `(sin r, cos r)` for an interval `r` with `|r| <= 2`.
+fn taylor_sincos(r: &Interval, wp: Prec) -> Option<(Interval, Interval)> {
+    if r.mag_bound() > rat(2) {
+        return None;
+    }
+    let tiny = two_pow(-(wp.bits as i64) - 4);
+    let (mut s, mut c) = (Interval::int(0), Interval::int(1));
+    let mut term = Interval::int(1);
+    for k in 1..MAX_TERMS {
+        term = term.mul(r, wp)?.div(&Interval::int(k as i64), wp)?;
+        let m = term.mag_bound();
+        if qlt(&m, &tiny) {
+            // Lagrange remainder: |R| <= max|r|^k / k! <= m (derivatives bounded by 1).
+            return Some((s.widen(&m), c.widen(&m)));
+        }
+        let acc = if k % 2 == 1 { &mut s } else { &mut c };
+        *acc = acc.add_signed(&term, (k / 2) % 2 == 1, wp)?;
+    }
+    None
+}
+
+/// Enclosures of `(sin q, cos q)` using reduction modulo `pi/2`.
+fn sincos_point(q: &BigRational, p: Prec) -> Option<(Interval, Interval)> {
+    if q.abs() > rat(MAX_TRIG_ARG) {
+        return None;
+    }
+    let wp = p.plus(40);
+    let half_pi = Interval::pi(wp)?.div(&Interval::int(2), wp)?;
+    let j = (q / half_pi.midpoint()).round().to_integer();
+    let jpi = half_pi.mul(&Interval::point(BigRational::from_integer(j.clone())), wp)?;
+    let r = Interval::point(q.clone()).sub(&jpi, wp)?;
+    let (s, c) = taylor_sincos(&r, wp)?;
+    let res = match j.mod_floor(&BigInt::from(4)).to_u32()? {
+        0 => (s, c),
+        1 => (c, s.neg()?),
+        2 => (s.neg()?, c.neg()?),
+        _ => (c.neg()?, s),
+    };
+    Some(res)
+}
+
+/// Decimal rendering of `q` with about `digits` significant digits.
+fn decimal(q: &BigRational, digits: usize) -> String {
+    if q.is_zero() {
+        return "0".to_string();
+    }
+    let e2 = mag(q);
+    if e2.abs() > 3000 {
+        // Huge or tiny: print a mantissa times a power of two (cheap).
+        let (n, d) = scaled(q.numer(), q.denom(), -e2);
+        let m = round_frac(&n, &d, 4 * digits as u32 + 16, false);
+        return m.map_or_else(String::new, |m| format!("{}*2^{e2}", decimal(&m, digits)));
+    }
+    let sign = if q.is_negative() { "-" } else { "" };
+    let a = q.abs();
+    let ten = rat(10);
+    let pow10 = |e: i64| -> BigRational {
+        let p =
+            BigRational::from_integer(num_traits::pow(BigInt::from(10), e.unsigned_abs() as usize));
+        if e >= 0 {
+            p
+        } else {
+            p.recip()
+        }
+    };
+    // Find e10 with 10^e10 <= a < 10^(e10+1).
+    let mut e10 = mag(&a) * 30103 / 100000;
+    let mut p = pow10(e10);
+    while p > a {
+        p /= &ten;
+        e10 -= 1;
+    }
+    while &p * &ten <= a {
+        p *= &ten;
+        e10 += 1;
+    }
+    let d = digits as i64;
+    if (-5..d).contains(&e10) {
+        let decimals = (d - 1 - e10) as usize;
+        let n = (&a * pow10(decimals as i64))
+            .round()
+            .to_integer()
+            .to_string();
+        if decimals == 0 {
+            return format!("{sign}{n}");
+        }
+        let n = format!("{:0>width$}", n, width = decimals + 1);
+        let (i, f) = n.split_at(n.len() - decimals);
+        format!("{sign}{i}.{f}")
+    } else {
+        let mut n = (&a / pow10(e10 - d + 1)).round().to_integer().to_string();
+        if n.len() > digits {
+            n.pop(); // rounding carried into a new digit
+            e10 += 1;
+        }
+        let (i, f) = n.split_at(1);
+        let f = if f.is_empty() {
+            String::new()
+        } else {
+            format!(".{f}")
+        };
+        format!("{sign}{i}{f}e{e10}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn q(n: i64, d: i64) -> BigRational {
+        BigRational::new(BigInt::from(n), BigInt::from(d))
+    }
+    fn pt(n: i64, d: i64) -> Interval {
+        Interval::point(q(n, d))
+    }
+    /// Parse a decimal literal exactly.
+    fn dec(s: &str) -> BigRational {
+        let (neg, s) = s.strip_prefix('-').map_or((false, s), |t| (true, t));
+        let (i, f) = s.split_once('.').unwrap_or((s, ""));
+        let n: BigInt = format!("{i}{f}").parse().unwrap();
+        let r = BigRational::new(n, num_traits::pow(BigInt::from(10), f.len()));
+        if neg {
+            -r
+        } else {
+            r
+        }
+    }
+    /// The enclosure contains a point within `tol` of `v` and is narrow.
+    fn near(iv: &Interval, v: &str, tol: &str) {
+        let (v, tol) = (dec(v), dec(tol));
+        assert!(
+            iv.lo() <= &(&v + &tol) && &(&v - &tol) <= iv.hi(),
+            "{iv} vs {v}"
+        );
+        assert!(iv.width() < two_pow(-80), "too wide: {iv}");
+    }
+    const P: Prec = Prec { bits: 96 };
+
+    #[test]
+    fn known_values() {
+        let s2 = pt(2, 1).sqrt(P).unwrap();
+        assert!(s2.lo() * s2.lo() <= rat(2) && rat(2) <= s2.hi() * s2.hi());
+        near(&s2, "1.41421356237", "0.00000000001");
+        near(
+            &pt(1, 1).sin(P).unwrap(),
+            "0.8414709848078965",
+            "0.000000000000001",
+        );
+        let pi = Interval::pi(P).unwrap();
+        near(&pi, "3.14159265358979323846", "0.00000000000000000001");
+        let c = pi.div(&pt(3, 1), P).unwrap().cos(P).unwrap();
+        assert!(c.contains(&q(1, 2)) && c.width() < two_pow(-80));
+        near(
+            &pt(1, 1).exp(P).unwrap(),
+            "2.71828182845904523536",
+            "0.00000000000000000001",
+        );
+        near(
+            &pt(2, 1).ln(P).unwrap(),
+            "0.69314718055994530942",
+            "0.00000000000000000001",
+        );
+        near(
+            &pt(1000, 1).cos(P).unwrap(),
+            "0.562379076290702991078",
+            "0.000000000000000000001",
+        );
+        near(
+            &pt(-3, 1).exp(P).unwrap(),
+            "0.0497870683678639429793",
+            "0.0000000000000000000001",
+        );
+        near(
+            &pt(1, 1000).ln(P).unwrap(),
+            "-6.90775527898213705205",
+            "0.00000000000000000001",
+        );
+        near(
+            &pt(1, 1).tan(P).unwrap(),
+            "1.5574077246549022305",
+            "0.0000000000000000001",
+        );
+        let p10 = pt(3, 2).powi(10, P).unwrap();
+        assert!(p10.contains(&q(59049, 1024)));
+        assert!(pt(-3, 2).powi(-3, P).unwrap().contains(&q(-8, 27)));
+        assert_eq!(pt(1, 1).sin(P).unwrap().to_decimal_string(8), "0.84147098");
+        assert_eq!(pt(-1, 8).to_decimal_string(3), "-0.125");
+        assert_eq!(pt(12345, 1).to_decimal_string(3), "1.23e4");
+        assert_eq!(pt(1, 1000000).to_decimal_string(2), "1.0e-6");
+        assert_eq!(pt(99999, 10_000_000_000).to_decimal_string(2), "1.0e-5");
+        let big = pt(3, 1).powi(100_000, P).unwrap().to_decimal_string(4);
+        assert!(big.ends_with("*2^158496"), "{big}");
+    }
+
+    #[test]
+    fn domains_and_limits() {
+        assert!(pt(-1, 1).sqrt(P).is_none());
+        assert!(pt(0, 1).ln(P).is_none());
+        assert!(Interval::new(rat(-1), rat(1)).unwrap().recip(P).is_none());
+        assert!(pt(1, 1).div(&pt(0, 1), P).is_none());
+        assert!(pt(2, 1).powi(MAX_POWI + 1, P).is_none());
+        assert!(pt(3, 1).powi(i64::MIN, P).is_none());
+        assert!(pt(3, 1).powi(MAX_POWI, P).is_none()); // too large
+        assert!(pt(2, 1).powi(MAX_POWI, P).is_some());
+        assert!(pt(10_000_000, 1).sin(P).is_none());
+        assert!(pt(1_000_000, 1).exp(P).is_none());
+        assert!(pt(500_000, 1).exp(P).unwrap().is_positive());
+        let pi = Interval::pi(P).unwrap();
+        let half = pi.div(&pt(2, 1), P).unwrap();
+        assert!(half.tan(P).is_none());
+        let wide = Interval::new(rat(0), rat(3)).unwrap();
+        let s = wide.sin(P).unwrap();
+        assert!(s.contains(&rat(1)) && s.contains(&rat(0)) && s.lo() >= &rat(-1));
+        let c = wide.cos(P).unwrap();
+        assert!(c.contains(&rat(1)) && !c.contains(&rat(-1)));
+        assert_eq!(
+            Interval::new(rat(-5), rat(5)).unwrap().cos(P).unwrap().lo(),
+            &rat(-1)
+        );
+        assert!(pt(0, 1).exp(P).unwrap() == pt(1, 1));
+        assert!(pt(1, 1).ln(P).unwrap() == pt(0, 1));
+        // a wrong 16-digit value is refuted; sign proofs
+        assert!(pt(1, 1)
+            .sin(P)
+            .unwrap()
+            .disjoint(&Interval::point(dec("0.8414709848078966"))));
+        assert!(pi.sub(&pt(355, 113), P).unwrap().is_negative());
+        assert!(pt(2, 1)
+            .sqrt(P)
+            .unwrap()
+            .sub(&pt(1414, 1000), P)
+            .unwrap()
+            .is_positive());
+    }
+
+    fn r() -> impl Strategy<Value = BigRational> {
+        (-1_000_000i64..1_000_000, 1i64..1_000_000).prop_map(|(n, d)| q(n, d))
+    }
+    fn rpos() -> impl Strategy<Value = BigRational> {
+        (1i64..1_000_000_000, 1i64..1_000_000).prop_map(|(n, d)| q(n, d))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+        #[test]
+        fn arith_contains(a in r(), b in r(), bits in 8u32..200) {
+            let p = Prec::new(bits);
+            let (x, y) = (Interval::point(a.clone()), Interval::point(b.clone()));
+            prop_assert!(x.add(&y, p).unwrap().contains(&(&a + &b)));
+            prop_assert!(x.sub(&y, p).unwrap().contains(&(&a - &b)));
+            prop_assert!(x.mul(&y, p).unwrap().contains(&(&a * &b)));
+            if !b.is_zero() {
+                prop_assert!(x.div(&y, p).unwrap().contains(&(&a / &b)));
+            }
+            let n = (bits % 7) as i32 - 3;
+            if !(a.is_zero() && n < 0) {
+                prop_assert!(x.powi(n as i64, p).unwrap().contains(&num_traits::pow::Pow::pow(&a, n)));
+            }
+            let w = Interval::new(std::cmp::min(&a, &b).clone(), std::cmp::max(&a, &b).clone()).unwrap();
+            let sq = w.powi(2, p).unwrap();
+            prop_assert!(sq.contains(&(&a * &a)) && sq.contains(&(&b * &b)));
+        }
+
+        #[test]
+        fn sqrt_sq(a in rpos()) {
+            let s = Interval::point(a.clone()).sqrt(P).unwrap();
+            prop_assert!(s.mul(&s, P).unwrap().contains(&a));
+            prop_assert!(s.lo() * s.lo() <= a && a <= s.hi() * s.hi());
+        }
+
+        #[test]
+        fn trig_identities(a in r()) {
+            let x = Interval::point(a.clone());
+            let (s, c) = (x.sin(P).unwrap(), x.cos(P).unwrap());
+            let one = s.powi(2, P).unwrap().add(&c.powi(2, P).unwrap(), P).unwrap();
+            prop_assert!(one.contains(&rat(1)));
+            // sin(2x) two ways
+            let s2 = Interval::point(&a * rat(2)).sin(P).unwrap();
+            let s2b = s.mul(&c, P).unwrap().mul(&Interval::int(2), P).unwrap();
+            prop_assert!(!s2.disjoint(&s2b));
+            // wide interval enclosure contains the endpoint values and midpoint
+            let w = Interval::new(a.clone(), &a + q(3, 2)).unwrap();
+            let sw = w.sin(P).unwrap();
+            let m = Interval::point(&a + q(3, 4)).sin(P).unwrap();
+            prop_assert!(!sw.disjoint(&m) && !sw.disjoint(&s));
+        }
+
+        #[test]
+        fn exp_ln(a in rpos(), b in r()) {
+            let x = Interval::point(a.clone());
+            let e = x.ln(P).unwrap().exp(P).unwrap();
+            prop_assert!(e.contains(&a));
+            // exp(a+b) = exp(a) exp(b), with a scaled down
+            let (u, v) = (Interval::point(&a / rat(100_000)), Interval::point(b.clone() / rat(1000)));
+            let lhs = u.add(&v, P).unwrap().exp(P).unwrap();
+            let rhs = u.exp(P).unwrap().mul(&v.exp(P).unwrap(), P).unwrap();
+            prop_assert!(!lhs.disjoint(&rhs));
+            // ln(a*a) = 2 ln a
+            let l2 = Interval::point(&a * &a).ln(P).unwrap();
+            prop_assert!(!l2.disjoint(&x.ln(P).unwrap().mul(&Interval::int(2), P).unwrap()));
+        }
+
+        #[test]
+        fn precisions_agree(a in r(), bits in 8u32..160) {
+            // Enclosures at a low and a high precision must overlap and nest around the value.
+            let (x, lo, hi) = (Interval::point(a.clone()), Prec::new(bits), Prec::new(300));
+            let fs: [fn(&Interval, Prec) -> Option<Interval>; 6] = [
+                Interval::sin, Interval::cos, Interval::exp, Interval::ln, Interval::sqrt, Interval::tan,
+            ];
+            for f in fs {
+                if let (Some(u), Some(v)) = (f(&x, lo), f(&x, hi)) {
+                    prop_assert!(!u.disjoint(&v), "{u} vs {v}");
+                    prop_assert!(v.width() < two_pow(-250) * (v.mag_bound() + rat(1)));
+                }
+            }
+            let w = Interval::new(a.clone() / rat(1000), a.clone() / rat(1000) + q(1, 7)).unwrap();
+            for f in fs {
+                if let (Some(u), Some(v)) = (f(&w, lo), f(&Interval::point(w.midpoint()), hi)) {
+                    prop_assert!(!u.disjoint(&v), "{u} vs {v}");
+                }
+            }
+        }
+
+        #[test]
+        fn distributive_never_disjoint(a in r(), b in r(), c in r()) {
+            let (x, y, z) = (Interval::point(a), Interval::point(b), Interval::point(c));
+            let lhs = x.add(&y, P).unwrap().mul(&z, P).unwrap();
+            let rhs = x.mul(&z, P).unwrap().add(&y.mul(&z, P).unwrap(), P).unwrap();
+            prop_assert!(!lhs.disjoint(&rhs));
+        }
+    }
+}

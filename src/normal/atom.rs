@@ -1,0 +1,193 @@
+//! Atoms, the indeterminates of the normal form, interned process-wide.
+//!
+//! An atom is a symbol, `pi`, or a function of a normal form (`sqrt`, `sin`, …).
+//! Interning gives every distinct atom one [`AtomId`]; since the arguments are
+//! themselves canonical, equal atoms get equal ids.
+
+use super::poly::Poly;
+use super::rat::Rat;
+use std::cmp::Ordering;
+use std::collections::HashMap;
+use std::sync::{Arc, LazyLock, RwLock};
+
+/// The interned id of an atom. Ids order monomials inside one process only;
+/// printers order by [`cmp_atoms`], which depends on content alone.
+pub type AtomId = u32;
+
+/// An indeterminate of the normal form.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Atom {
+    /// A symbol (`m`, `I_G`, `x''`).
+    Sym(String),
+    /// π.
+    Pi,
+    /// `sqrt(p)`, with `p` a polynomial holding no square factor rigor could see. Reduction: `s² = p`.
+    Sqrt(Poly),
+    /// The principal `n`-th root of `p`, `n ≥ 3`. Reduction: `rⁿ = p`.
+    Root(Poly, u32),
+    /// `abs(p)`, `p` of unknown sign, primitive with positive leading coefficient. Reduction: `A² = p²`.
+    Abs(Poly),
+    /// `sin(u)`.
+    Sin(Rat),
+    /// `cos(u)`. Reduction: `c² = 1 − sin(u)²`.
+    Cos(Rat),
+    /// `exp(u)`; products of exponentials merge into one.
+    Exp(Rat),
+    /// `ln(u)`.
+    Ln(Rat),
+    /// `b^e` with a symbolic exponent and a base of unknown sign.
+    Pow(Rat, Rat),
+    /// `∫ x₁^e₁ ⋯ xₙ^eₙ dm` over the abstract body named: every coordinate with its exponent.
+    Moment(String, Vec<(String, u32)>),
+}
+
+/// What reduction rule, if any, an atom carries.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Rule {
+    /// No rule: an independent indeterminate.
+    Free,
+    /// `a^n = value`: powers at or above `n` reduce.
+    Power(u32),
+    /// An exponential: products merge.
+    Exp,
+}
+
+struct Entry {
+    atom: Arc<Atom>,
+    rule: Rule,
+    depth: u32,
+}
+
+#[derive(Default)]
+struct Table {
+    map: HashMap<Arc<Atom>, AtomId>,
+    entries: Vec<Entry>,
+}
+
+static TABLE: LazyLock<RwLock<Table>> = LazyLock::new(|| RwLock::new(Table::default()));
+
+fn rule_of(a: &Atom) -> Rule {
+    match a {
+        Atom::Sqrt(_) | Atom::Abs(_) | Atom::Cos(_) => Rule::Power(2),
+        Atom::Root(_, n) => Rule::Power(*n),
+        Atom::Exp(_) => Rule::Exp,
+        _ => Rule::Free,
+    }
+}
+
+fn depth_of(t: &Table, a: &Atom) -> u32 {
+    let of_poly = |p: &Poly| {
+        p.atoms()
+            .iter()
+            .filter_map(|id| t.entries.get(*id as usize).map(|e| e.depth))
+            .max()
+            .unwrap_or(0)
+    };
+    let of_rat = |r: &Rat| of_poly(r.num()).max(of_poly(r.den()));
+    1 + match a {
+        Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => 0,
+        Atom::Sqrt(p) | Atom::Root(p, _) | Atom::Abs(p) => of_poly(p),
+        Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) => of_rat(u),
+        Atom::Pow(b, e) => of_rat(b).max(of_rat(e)),
+    }
+}
+
+/// The id of `a`, interning it if new.
+pub fn intern(a: Atom) -> AtomId {
+    {
+        let t = TABLE.read().unwrap_or_else(|e| e.into_inner());
+        if let Some(id) = t.map.get(&a) {
+            return *id;
+        }
+    }
+    let mut t = TABLE.write().unwrap_or_else(|e| e.into_inner());
+    if let Some(id) = t.map.get(&a) {
+        return *id;
+    }
+    let id = t.entries.len() as AtomId;
+    let depth = depth_of(&t, &a);
+    let rule = rule_of(&a);
+    let atom = Arc::new(a);
+    t.entries.push(Entry {
+        atom: atom.clone(),
+        rule,
+        depth,
+    });
+    t.map.insert(atom, id);
+    id
+}
+
+/// The symbol named `name`.
+pub fn sym(name: &str) -> AtomId {
+    intern(Atom::Sym(name.to_string()))
+}
+
+/// The atom with id `id`. Ids only come from [`intern`], so the lookup cannot fail;
+/// an unknown id (a bug) reads as the symbol `?`.
+pub fn get(id: AtomId) -> Arc<Atom> {
+    let t = TABLE.read().unwrap_or_else(|e| e.into_inner());
+    match t.entries.get(id as usize) {
+        Some(e) => e.atom.clone(),
+        None => Arc::new(Atom::Sym("?".into())),
+    }
+}
+
+/// The reduction rule of each atom in `ids` (one lock for all).
+pub fn rules(ids: &[AtomId]) -> Vec<Rule> {
+    let t = TABLE.read().unwrap_or_else(|e| e.into_inner());
+    ids.iter()
+        .map(|id| t.entries.get(*id as usize).map_or(Rule::Free, |e| e.rule))
+        .collect()
+}
+
+/// The nesting depth of an atom (symbols 1).
+pub fn depth(id: AtomId) -> u32 {
+    let t = TABLE.read().unwrap_or_else(|e| e.into_inner());
+    t.entries.get(id as usize).map_or(0, |e| e.depth)
+}
+
+/// The symbol's name, if `id` is a symbol.
+pub fn sym_name(id: AtomId) -> Option<String> {
+    match &*get(id) {
+        Atom::Sym(s) => Some(s.clone()),
+        _ => None,
+    }
+}
+
+fn kind_rank(a: &Atom) -> u8 {
+    match a {
+        Atom::Sym(_) => 0,
+        Atom::Moment(..) => 1,
+        Atom::Pi => 2,
+        Atom::Pow(..) => 3,
+        Atom::Sqrt(_) => 4,
+        Atom::Root(..) => 5,
+        Atom::Abs(_) => 6,
+        Atom::Sin(_) => 7,
+        Atom::Cos(_) => 8,
+        Atom::Exp(_) => 9,
+        Atom::Ln(_) => 10,
+    }
+}
+
+/// A total order of atoms by content alone, the same in every run: printers use it.
+pub fn cmp_atoms(a: AtomId, b: AtomId) -> Ordering {
+    if a == b {
+        return Ordering::Equal;
+    }
+    let (x, y) = (get(a), get(b));
+    kind_rank(&x).cmp(&kind_rank(&y)).then_with(|| match (&*x, &*y) {
+        (Atom::Sym(p), Atom::Sym(q)) => p
+            .to_lowercase()
+            .cmp(&q.to_lowercase())
+            .then_with(|| p.cmp(q)),
+        (Atom::Moment(b1, e1), Atom::Moment(b2, e2)) => b1.cmp(b2).then_with(|| e1.cmp(e2)),
+        _ => {
+            let (p, q) = (
+                super::print::atom_plain(&x),
+                super::print::atom_plain(&y),
+            );
+            p.len().cmp(&q.len()).then_with(|| p.cmp(&q))
+        }
+    })
+}

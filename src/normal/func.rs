@@ -1,0 +1,400 @@
+//! Constructors of the functions of §1 on normal forms: `sqrt`, roots, `abs`,
+//! `exp`, `ln` and powers, each applying the rules the declared signs allow.
+
+use super::atom::{self, Atom};
+use super::mono::Mono;
+use super::poly::{Poly, Q};
+use super::rat::Rat;
+use super::sign::{Assumptions, Sign};
+use super::{Limit, NormError};
+use num_bigint::{BigInt, BigUint};
+use num_integer::Roots;
+use num_traits::{One, Signed, ToPrimitive, Zero};
+
+/// Primes by trial division up to this bound; a larger cofactor is kept whole.
+const TRIAL_LIMIT: u32 = 10_000;
+
+/// `n = k^root · ∏ rest`: the largest perfect `root`-th power found, and the remaining
+/// factors (primes, each with exponent below `root`, plus possibly one unfactored cofactor).
+fn split_power(n: &BigUint, root: u32) -> (BigUint, Vec<(BigUint, u32)>) {
+    let mut n = n.clone();
+    let mut k = BigUint::one();
+    let mut rest = Vec::new();
+    let mut p = 2u32;
+    while p <= TRIAL_LIMIT {
+        let bp = BigUint::from(p);
+        if &bp * &bp > n {
+            break;
+        }
+        let mut e = 0u32;
+        while (&n % &bp).is_zero() {
+            n /= &bp;
+            e += 1;
+        }
+        if e > 0 {
+            k *= num_traits::pow(bp.clone(), (e / root) as usize);
+            if e % root > 0 {
+                rest.push((bp, e % root));
+            }
+        }
+        p += if p == 2 { 1 } else { 2 };
+    }
+    if n > BigUint::one() {
+        let r = n.nth_root(root);
+        if num_traits::pow(r.clone(), root as usize) == n {
+            k *= r;
+        } else {
+            rest.push((n, 1));
+        }
+    }
+    (k, rest)
+}
+
+fn q_of(n: BigUint) -> Q {
+    Q::from_integer(BigInt::from(n))
+}
+
+/// The principal square root.
+pub fn sqrt(u: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
+    root(u, 2, s)
+}
+
+/// The principal `n`-th root (`n ≥ 2`); negative radicands only for odd `n`.
+pub fn root(u: &Rat, n: u32, s: &Assumptions) -> Result<Rat, NormError> {
+    if u.is_zero() {
+        return Ok(Rat::zero());
+    }
+    if n == 1 {
+        return Ok(u.clone());
+    }
+    if u.den().is_one() {
+        return root_poly(u.num(), n, s);
+    }
+    // root(p/q) = root(p·q^(n−1)) / |q|
+    let q = u.den();
+    let p = u.num().mul(&q.pow(u64::from(n - 1))?)?;
+    let top = root_poly(&p, n, s)?;
+    let bottom = abs(&Rat::poly(q.clone())?, s)?;
+    top.div(&bottom)
+}
+
+fn root_poly(p: &Poly, n: u32, s: &Assumptions) -> Result<Rat, NormError> {
+    let sign = s.poly(p);
+    let even = n % 2 == 0;
+    if even && sign == Sign::Neg {
+        return Err(NormError::Domain(format!(
+            "the square root{} of a negative quantity is not real",
+            if n == 2 { "" } else { " (even root)" }
+        )));
+    }
+    // Constant factor: c = a/b, root(c) = root(a·b^(n−1))/b.
+    let c = p.content();
+    let neg = p.lead().is_some_and(|t| t.1.is_negative());
+    let rest = p.scale(&c.recip()).scale(&if neg { -Q::one() } else { Q::one() });
+    let (a, b) = (c.numer().magnitude().clone(), c.denom().magnitude().clone());
+    let radicand = &a * num_traits::pow(b.clone(), (n - 1) as usize);
+    let (k, factors) = split_power(&radicand, n);
+    let mut out = Rat::constant(Q::new(BigInt::from(k), BigInt::from(b)));
+    for (f, e) in factors {
+        let base = Poly::constant(q_of(num_traits::pow(f, e as usize)));
+        out = out.mul(&Rat::atom(root_atom(base, n)))?;
+    }
+    // Monomial factors: a^e = a^(n·(e/n)) · a^(e mod n).
+    let mc = rest.mono_content();
+    let rest = rest.div_mono(&mc).unwrap_or(rest);
+    let mut inside = Vec::new();
+    for &(a, e) in mc.pairs() {
+        let outside = e / n;
+        if outside > 0 {
+            let ar = Rat::atom(a);
+            let f = if even {
+                abs(&ar, s)?.powi(i64::from(outside))?
+            } else {
+                ar.powi(i64::from(outside))?
+            };
+            out = out.mul(&f)?;
+        }
+        if e % n > 0 {
+            inside.push((a, e % n));
+        }
+    }
+    let inside = Mono::from_pairs(inside).ok_or(Limit::Exponent)?;
+    let mut radicand = rest.mul_term(&inside, &Q::one())?;
+    if neg {
+        if even {
+            radicand = radicand.neg();
+        } else {
+            out = out.neg();
+        }
+    }
+    if radicand.is_one() {
+        return Ok(out);
+    }
+    // A whole polynomial that is a perfect square.
+    if n == 2 && radicand.len() > 1 {
+        if let Some(r) = poly_sqrt(&radicand)? {
+            return out.mul(&abs(&Rat::poly(r)?, s)?);
+        }
+    }
+    out.mul(&Rat::atom(root_atom(radicand, n)))
+}
+
+fn root_atom(p: Poly, n: u32) -> atom::AtomId {
+    if n == 2 {
+        atom::intern(Atom::Sqrt(p))
+    } else {
+        atom::intern(Atom::Root(p, n))
+    }
+}
+
+/// `r` with `r² = p`, if `p` is the square of a polynomial.
+pub fn poly_sqrt(p: &Poly) -> Result<Option<Poly>, Limit> {
+    let Some((lm, lc)) = p.lead().cloned() else {
+        return Ok(Some(Poly::zero()));
+    };
+    let Some(rc) = rational_sqrt(&lc) else {
+        return Ok(None);
+    };
+    let pairs: Option<Vec<_>> = lm
+        .pairs()
+        .iter()
+        .map(|&(a, e)| (e % 2 == 0).then_some((a, e / 2)))
+        .collect();
+    let Some(pairs) = pairs else {
+        return Ok(None);
+    };
+    let Some(rm) = Mono::from_pairs(pairs) else {
+        return Ok(None);
+    };
+    let lead_r = (rm, rc);
+    let mut r = Poly::term(lead_r.0.clone(), lead_r.1.clone());
+    let two_lead = Poly::term(lead_r.0.clone(), &lead_r.1 * Q::from_integer(2.into()));
+    for _ in 0..=p.len() {
+        let rem = p.sub(&r.mul(&r)?);
+        let Some((m, c)) = rem.lead().cloned() else {
+            return Ok(Some(r));
+        };
+        let Some((tm, tc)) = two_lead.lead().cloned() else {
+            return Ok(None);
+        };
+        let Some(qm) = m.div(&tm) else {
+            return Ok(None);
+        };
+        if qm >= lead_r.0 {
+            return Ok(None);
+        }
+        r = r.add(&Poly::term(qm, c / tc));
+    }
+    Ok(None)
+}
+
+fn rational_sqrt(q: &Q) -> Option<Q> {
+    if q.is_negative() {
+        return None;
+    }
+    let (n, d) = (q.numer().magnitude(), q.denom().magnitude());
+    let (rn, rd) = (n.sqrt(), d.sqrt());
+    (&rn * &rn == *n && &rd * &rd == *d).then(|| Q::new(BigInt::from(rn), BigInt::from(rd)))
+}
+
+/// `abs(u)`, resolved where the signs decide it.
+pub fn abs(u: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
+    match s.rat(u) {
+        Sign::Pos | Sign::NonNeg | Sign::Zero => return Ok(u.clone()),
+        Sign::Neg | Sign::NonPos => return Ok(u.neg()),
+        _ => {}
+    }
+    let n = abs_poly(u.num(), s)?;
+    if u.den().is_one() {
+        return Ok(n);
+    }
+    n.div(&abs_poly(u.den(), s)?)
+}
+
+fn abs_poly(p: &Poly, s: &Assumptions) -> Result<Rat, NormError> {
+    match s.poly(p) {
+        Sign::Pos | Sign::NonNeg | Sign::Zero => return Rat::poly(p.clone()),
+        Sign::Neg | Sign::NonPos => return Rat::poly(p.neg()),
+        _ => {}
+    }
+    let c = p.content();
+    let prim = p.primitive();
+    let mc = prim.mono_content();
+    let rest = prim.div_mono(&mc).unwrap_or(prim);
+    let mut out = Rat::constant(c);
+    for &(a, e) in mc.pairs() {
+        let ar = Rat::atom(a);
+        let f = match s.atom(a) {
+            Sign::Pos | Sign::NonNeg => ar.powi(i64::from(e))?,
+            Sign::Neg | Sign::NonPos => ar.neg().powi(i64::from(e))?,
+            _ if e % 2 == 0 => ar.powi(i64::from(e))?,
+            _ => ar
+                .powi(i64::from(e - 1))?
+                .mul(&Rat::atom(atom::intern(Atom::Abs(Poly::atom(a)))))?,
+        };
+        out = out.mul(&f)?;
+    }
+    if rest.is_one() {
+        return Ok(out);
+    }
+    let f = match s.poly(&rest) {
+        Sign::Pos | Sign::NonNeg => Rat::poly(rest)?,
+        Sign::Neg | Sign::NonPos => Rat::poly(rest.neg())?,
+        _ => Rat::atom(atom::intern(Atom::Abs(rest))),
+    };
+    out.mul(&f)
+}
+
+/// `exp(u)`: `exp(0) = 1`, `exp(k·ln(v)) = v^k`, otherwise one exponential atom.
+pub fn exp(u: &Rat) -> Result<Rat, NormError> {
+    if u.is_zero() {
+        return Ok(Rat::one());
+    }
+    let mut out = Rat::one();
+    let mut arg = u.clone();
+    if u.den().is_one() {
+        let mut rest = Vec::new();
+        for (m, q) in u.num().terms() {
+            let ln_of = match m.pairs() {
+                [(a, 1)] => match &*atom::get(*a) {
+                    Atom::Ln(v) => Some(v.clone()),
+                    _ => None,
+                },
+                _ => None,
+            };
+            match (ln_of, q.is_integer()) {
+                (Some(v), true) => {
+                    let k = q.to_integer().to_i64().ok_or(Limit::Exponent)?;
+                    out = out.mul(&v.powi(k)?)?;
+                }
+                _ => rest.push((m.clone(), q.clone())),
+            }
+        }
+        arg = Rat::poly(Poly::from_terms(rest))?;
+    }
+    if arg.is_zero() {
+        return Ok(out);
+    }
+    out.mul(&Rat::atom(atom::intern(Atom::Exp(arg))))
+}
+
+/// `ln(u)`: `ln(exp(v)) = v`; products split only where the signs make every factor positive.
+pub fn ln(u: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
+    match s.rat(u) {
+        Sign::Neg | Sign::NonPos | Sign::Zero => {
+            return Err(NormError::Domain(
+                "ln of a quantity that is not positive".into(),
+            ))
+        }
+        _ => {}
+    }
+    if let Some(q) = u.as_constant() {
+        return ln_rational(&q);
+    }
+    let mut out = Rat::zero();
+    let mut leftover_num = Poly::one();
+    let mut leftover_den = Poly::one();
+    for (p, sgn) in [(u.num(), 1i64), (u.den(), -1i64)] {
+        if p.is_one() {
+            continue;
+        }
+        let c = p.content();
+        let neg = p.lead().is_some_and(|t| t.1.is_negative());
+        let prim = p.primitive();
+        let mc = prim.mono_content();
+        let rest = prim.div_mono(&mc).unwrap_or(prim.clone());
+        let positive_rest = rest.is_one() || s.poly(&rest) == Sign::Pos;
+        let all_pos = mc.pairs().iter().all(|&(a, _)| s.atom(a) == Sign::Pos);
+        if all_pos && positive_rest && !neg {
+            out = out.add(&ln_rational(&c)?.scale(&Q::from_integer(sgn.into())))?;
+            for &(a, e) in mc.pairs() {
+                let term = match &*atom::get(a) {
+                    Atom::Exp(v) => v.clone(),
+                    _ => Rat::atom(atom::intern(Atom::Ln(Rat::atom(a)))),
+                };
+                out = out.add(&term.scale(&Q::from_integer((sgn * i64::from(e)).into())))?;
+            }
+            if !rest.is_one() {
+                let l = Rat::atom(atom::intern(Atom::Ln(Rat::poly(rest)?)));
+                out = out.add(&l.scale(&Q::from_integer(sgn.into())))?;
+            }
+        } else if sgn == 1 {
+            leftover_num = p.clone();
+        } else {
+            leftover_den = p.clone();
+        }
+    }
+    if !(leftover_num.is_one() && leftover_den.is_one()) {
+        let v = Rat::new(leftover_num, leftover_den)?;
+        let l = match v.as_atom().map(|a| atom::get(a)) {
+            Some(a) => match &*a {
+                Atom::Exp(w) => w.clone(),
+                _ => Rat::atom(atom::intern(Atom::Ln(v))),
+            },
+            None => Rat::atom(atom::intern(Atom::Ln(v))),
+        };
+        out = out.add(&l)?;
+    }
+    Ok(out)
+}
+
+/// `ln(q)` for a positive rational: a sum over its prime factors.
+fn ln_rational(q: &Q) -> Result<Rat, NormError> {
+    if !q.is_positive() {
+        return Err(NormError::Domain(
+            "ln of a number that is not positive".into(),
+        ));
+    }
+    let mut out = Rat::zero();
+    for (n, sgn) in [(q.numer(), 1i64), (q.denom(), -1i64)] {
+        let mag = n.magnitude();
+        if mag.is_one() {
+            continue;
+        }
+        // split_power with a huge root gives the plain factorisation.
+        let (_, factors) = split_power(mag, u32::MAX);
+        for (p, e) in factors {
+            let l = Rat::atom(atom::intern(Atom::Ln(Rat::constant(q_of(p)))));
+            out = out.add(&l.scale(&Q::from_integer((sgn * i64::from(e)).into())))?;
+        }
+    }
+    Ok(out)
+}
+
+/// `base^exponent` for any exponent: integers exactly, rationals as roots,
+/// symbolic exponents as `exp(e·ln(b))` when `b > 0`, else an opaque power.
+pub fn pow(base: &Rat, exponent: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
+    if let Some(e) = exponent.as_constant() {
+        if e.is_integer() {
+            let k = e.to_integer().to_i64().ok_or(Limit::Exponent)?;
+            return int_pow(base, k);
+        }
+        let (p, q) = (e.numer().clone(), e.denom().clone());
+        let q = q.to_u32().filter(|q| *q <= 64).ok_or(Limit::Exponent)?;
+        let p = p.to_i64().ok_or(Limit::Exponent)?;
+        let r = root(base, q, s)?;
+        return int_pow(&r, p);
+    }
+    if base.is_zero() {
+        return Err(NormError::Domain("0 to a symbolic power".into()));
+    }
+    if s.rat(base) == Sign::Pos {
+        let l = ln(base, s)?;
+        return exp(&l.mul(exponent)?);
+    }
+    Ok(Rat::atom(atom::intern(Atom::Pow(
+        base.clone(),
+        exponent.clone(),
+    ))))
+}
+
+/// An integer power; a sum too large to expand becomes an opaque power atom.
+pub fn int_pow(base: &Rat, k: i64) -> Result<Rat, NormError> {
+    match base.powi(k) {
+        Err(NormError::Limit(Limit::Terms)) if k > 0 => Ok(Rat::atom(atom::intern(Atom::Pow(
+            base.clone(),
+            Rat::int(k),
+        )))),
+        r => r,
+    }
+}

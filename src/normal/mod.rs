@@ -1,0 +1,77 @@
+//! The exact normal form: rational functions over ℚ in atoms, canonical by construction.
+//!
+//! Nothing here knows about source spans; [`lower`](crate::lower) turns syntax
+//! into these values and reports errors with spans.
+
+pub mod atom;
+pub mod func;
+pub mod gcd;
+pub mod mono;
+pub mod poly;
+pub mod print;
+pub mod rat;
+pub mod reduce;
+pub mod sign;
+pub mod subst;
+pub mod trig;
+
+pub use atom::{Atom, AtomId};
+pub use poly::{Poly, Q};
+pub use rat::Rat;
+pub use sign::{Assumptions, Sign};
+
+use std::fmt;
+
+/// A resource limit that an operation would exceed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Limit {
+    /// An intermediate result would have too many terms.
+    Terms,
+    /// An exponent would not fit.
+    Exponent,
+}
+
+impl fmt::Display for Limit {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Limit::Terms => write!(
+                f,
+                "the result would have more than {} terms (the limit; see --max-terms)",
+                poly::max_terms()
+            ),
+            Limit::Exponent => write!(f, "an exponent exceeds {}", mono::MAX_EXPONENT),
+        }
+    }
+}
+
+/// Why an operation on normal forms failed.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum NormError {
+    /// Division by an expression that is exactly zero.
+    DivisionByZero,
+    /// `0^0`.
+    ZeroToZero,
+    /// A value outside a function's real domain (`sqrt(-1)`, `ln(0)`).
+    Domain(String),
+    /// A resource limit.
+    Limit(Limit),
+}
+
+impl From<Limit> for NormError {
+    fn from(l: Limit) -> NormError {
+        NormError::Limit(l)
+    }
+}
+
+impl fmt::Display for NormError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            NormError::DivisionByZero => f.write_str("division by an expression that is exactly zero"),
+            NormError::ZeroToZero => f.write_str("0^0 is undefined"),
+            NormError::Domain(s) => f.write_str(s),
+            NormError::Limit(l) => write!(f, "refused: {l}"),
+        }
+    }
+}
+
+impl std::error::Error for NormError {}

@@ -1,0 +1,444 @@
+//! Sparse multivariate polynomials over ℚ in atoms: sorted terms, no zero coefficients.
+
+use super::atom::AtomId;
+use super::mono::Mono;
+use super::Limit;
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_rational::BigRational;
+use num_traits::{One, Signed, Zero};
+use std::collections::HashMap;
+
+/// An exact rational number.
+pub type Q = BigRational;
+
+/// Largest number of terms any intermediate polynomial may have (overridable with [`set_max_terms`]).
+static MAX_TERMS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(2_000_000);
+
+/// Sets the largest number of terms an intermediate polynomial may have.
+pub fn set_max_terms(n: usize) {
+    MAX_TERMS.store(n, std::sync::atomic::Ordering::Relaxed);
+}
+
+/// The current limit on the number of terms.
+pub fn max_terms() -> usize {
+    MAX_TERMS.load(std::sync::atomic::Ordering::Relaxed)
+}
+
+/// A polynomial: terms sorted ascending by monomial order, each coefficient nonzero.
+/// The fields are private so that every value is canonical and `==` is equality.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, Default)]
+pub struct Poly {
+    terms: Vec<(Mono, Q)>,
+}
+
+impl Poly {
+    /// 0.
+    pub fn zero() -> Poly {
+        Poly { terms: Vec::new() }
+    }
+
+    /// 1.
+    pub fn one() -> Poly {
+        Poly::constant(Q::one())
+    }
+
+    /// A constant.
+    pub fn constant(q: Q) -> Poly {
+        if q.is_zero() {
+            Poly::zero()
+        } else {
+            Poly {
+                terms: vec![(Mono::one(), q)],
+            }
+        }
+    }
+
+    /// An integer constant.
+    pub fn int(n: i64) -> Poly {
+        Poly::constant(Q::from_integer(BigInt::from(n)))
+    }
+
+    /// The atom `a`.
+    pub fn atom(a: AtomId) -> Poly {
+        Poly::term(Mono::atom(a, 1), Q::one())
+    }
+
+    /// A single term.
+    pub fn term(m: Mono, q: Q) -> Poly {
+        if q.is_zero() {
+            Poly::zero()
+        } else {
+            Poly { terms: vec![(m, q)] }
+        }
+    }
+
+    /// Builds a polynomial from terms in any order, merging equal monomials.
+    pub fn from_terms(mut terms: Vec<(Mono, Q)>) -> Poly {
+        terms.sort_by(|a, b| a.0.cmp(&b.0));
+        let mut out: Vec<(Mono, Q)> = Vec::with_capacity(terms.len());
+        for (m, q) in terms {
+            match out.last_mut() {
+                Some(last) if last.0 == m => last.1 += q,
+                _ => {
+                    if let Some(last) = out.last() {
+                        if last.1.is_zero() {
+                            out.pop();
+                        }
+                    }
+                    out.push((m, q))
+                }
+            }
+        }
+        out.retain(|t| !t.1.is_zero());
+        Poly { terms: out }
+    }
+
+    /// The terms, ascending.
+    pub fn terms(&self) -> &[(Mono, Q)] {
+        &self.terms
+    }
+
+    /// Number of terms.
+    pub fn len(&self) -> usize {
+        self.terms.len()
+    }
+
+    /// Whether this is 0.
+    pub fn is_zero(&self) -> bool {
+        self.terms.is_empty()
+    }
+
+    /// Whether this is 1.
+    pub fn is_one(&self) -> bool {
+        self.as_constant().is_some_and(|q| q.is_one())
+    }
+
+    /// The value, if constant.
+    pub fn as_constant(&self) -> Option<Q> {
+        match self.terms.as_slice() {
+            [] => Some(Q::zero()),
+            [(m, q)] if m.is_one() => Some(q.clone()),
+            _ => None,
+        }
+    }
+
+    /// The single atom this is, if it is exactly one atom with coefficient 1.
+    pub fn as_atom(&self) -> Option<AtomId> {
+        match self.terms.as_slice() {
+            [(m, q)] if q.is_one() => match m.pairs() {
+                [(a, 1)] => Some(*a),
+                _ => None,
+            },
+            _ => None,
+        }
+    }
+
+    /// The leading (greatest) term.
+    pub fn lead(&self) -> Option<&(Mono, Q)> {
+        self.terms.last()
+    }
+
+    /// The sum.
+    pub fn add(&self, other: &Poly) -> Poly {
+        let (a, b) = (&self.terms, &other.terms);
+        let mut out = Vec::with_capacity(a.len() + b.len());
+        let (mut i, mut j) = (0, 0);
+        while i < a.len() && j < b.len() {
+            match a[i].0.cmp(&b[j].0) {
+                std::cmp::Ordering::Less => {
+                    out.push(a[i].clone());
+                    i += 1;
+                }
+                std::cmp::Ordering::Greater => {
+                    out.push(b[j].clone());
+                    j += 1;
+                }
+                std::cmp::Ordering::Equal => {
+                    let q = &a[i].1 + &b[j].1;
+                    if !q.is_zero() {
+                        out.push((a[i].0.clone(), q));
+                    }
+                    i += 1;
+                    j += 1;
+                }
+            }
+        }
+        out.extend_from_slice(&a[i..]);
+        out.extend_from_slice(&b[j..]);
+        Poly { terms: out }
+    }
+
+    /// The negation.
+    pub fn neg(&self) -> Poly {
+        Poly {
+            terms: self.terms.iter().map(|(m, q)| (m.clone(), -q)).collect(),
+        }
+    }
+
+    /// The difference.
+    pub fn sub(&self, other: &Poly) -> Poly {
+        self.add(&other.neg())
+    }
+
+    /// `q · self`.
+    pub fn scale(&self, q: &Q) -> Poly {
+        if q.is_zero() {
+            return Poly::zero();
+        }
+        Poly {
+            terms: self.terms.iter().map(|(m, c)| (m.clone(), c * q)).collect(),
+        }
+    }
+
+    /// `q · m · self`.
+    pub fn mul_term(&self, m: &Mono, q: &Q) -> Result<Poly, Limit> {
+        if q.is_zero() {
+            return Ok(Poly::zero());
+        }
+        let mut terms = Vec::with_capacity(self.terms.len());
+        for (n, c) in &self.terms {
+            terms.push((n.mul(m).ok_or(Limit::Exponent)?, c * q));
+        }
+        // Multiplying by a monomial preserves a monomial order.
+        Ok(Poly { terms })
+    }
+
+    /// The product, refused when it would exceed the term limit.
+    pub fn mul(&self, other: &Poly) -> Result<Poly, Limit> {
+        if self.is_zero() || other.is_zero() {
+            return Ok(Poly::zero());
+        }
+        let (small, big) = if self.len() <= other.len() {
+            (self, other)
+        } else {
+            (other, self)
+        };
+        if small.len() == 1 {
+            let (m, q) = &small.terms[0];
+            return big.mul_term(m, q);
+        }
+        let bound = small.len().saturating_mul(big.len());
+        let mut acc: HashMap<Mono, Q> = HashMap::with_capacity(bound.min(1 << 16));
+        for (m1, c1) in &small.terms {
+            for (m2, c2) in &big.terms {
+                let m = m1.mul(m2).ok_or(Limit::Exponent)?;
+                let c = c1 * c2;
+                match acc.get_mut(&m) {
+                    Some(v) => *v += c,
+                    None => {
+                        acc.insert(m, c);
+                    }
+                }
+            }
+            if acc.len() > max_terms() {
+                return Err(Limit::Terms);
+            }
+        }
+        let mut terms: Vec<(Mono, Q)> = acc.into_iter().filter(|t| !t.1.is_zero()).collect();
+        terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+        Ok(Poly { terms })
+    }
+
+    /// `self^k` by repeated squaring, refused when too big.
+    pub fn pow(&self, k: u64) -> Result<Poly, Limit> {
+        if k == 0 {
+            return Ok(Poly::one());
+        }
+        if self.len() == 1 {
+            let (m, q) = &self.terms[0];
+            let k32 = u32::try_from(k).map_err(|_| Limit::Exponent)?;
+            let m = m.pow(k32).ok_or(Limit::Exponent)?;
+            return Ok(Poly::term(m, pow_q(q, k32)));
+        }
+        if self.is_zero() {
+            return Ok(Poly::zero());
+        }
+        if !pow_fits(self.len(), k) {
+            return Err(Limit::Terms);
+        }
+        let mut result = Poly::one();
+        let mut base = self.clone();
+        let mut e = k;
+        while e > 0 {
+            if e & 1 == 1 {
+                result = result.mul(&base)?;
+            }
+            e >>= 1;
+            if e > 0 {
+                base = base.mul(&base)?;
+            }
+        }
+        Ok(result)
+    }
+
+    /// The atoms occurring, sorted.
+    pub fn atoms(&self) -> Vec<AtomId> {
+        let mut v: Vec<AtomId> = self
+            .terms
+            .iter()
+            .flat_map(|(m, _)| m.pairs().iter().map(|p| p.0))
+            .collect();
+        v.sort_unstable();
+        v.dedup();
+        v
+    }
+
+    /// Whether atom `a` occurs.
+    pub fn contains(&self, a: AtomId) -> bool {
+        self.terms.iter().any(|(m, _)| m.exp(a) > 0)
+    }
+
+    /// Degree in atom `a`.
+    pub fn degree_in(&self, a: AtomId) -> u32 {
+        self.terms.iter().map(|(m, _)| m.exp(a)).max().unwrap_or(0)
+    }
+
+    /// The coefficients of `self` as a polynomial in `a`: `(exponent, coefficient)`, ascending.
+    pub fn coeffs_in(&self, a: AtomId) -> Vec<(u32, Poly)> {
+        let mut map: std::collections::BTreeMap<u32, Vec<(Mono, Q)>> = Default::default();
+        for (m, q) in &self.terms {
+            let (rest, e) = m.split(a);
+            map.entry(e).or_default().push((rest, q.clone()));
+        }
+        map.into_iter()
+            .map(|(e, t)| (e, Poly::from_terms(t)))
+            .collect()
+    }
+
+    /// Σ cᵢ aⁱ from coefficients.
+    pub fn from_coeffs(a: AtomId, coeffs: &[(u32, Poly)]) -> Result<Poly, Limit> {
+        let mut out = Poly::zero();
+        for (e, c) in coeffs {
+            out = out.add(&c.mul_term(&Mono::atom(a, *e), &Q::one())?);
+        }
+        Ok(out)
+    }
+
+    /// `self` with atom `a` replaced by polynomial `v`.
+    pub fn subst(&self, a: AtomId, v: &Poly) -> Result<Poly, Limit> {
+        if !self.contains(a) {
+            return Ok(self.clone());
+        }
+        let coeffs = self.coeffs_in(a);
+        // Horner's scheme from the top degree down.
+        let mut out = Poly::zero();
+        let mut prev: Option<u32> = None;
+        for (e, c) in coeffs.iter().rev() {
+            if let Some(p) = prev {
+                out = out.mul(&v.pow(u64::from(p - e))?)?;
+            }
+            out = out.add(c);
+            prev = Some(*e);
+        }
+        if let Some(p) = prev {
+            out = out.mul(&v.pow(u64::from(p))?)?;
+        }
+        Ok(out)
+    }
+
+    /// The partial derivative with respect to atom `a`, treating every other atom as constant.
+    pub fn deriv_atom(&self, a: AtomId) -> Poly {
+        let mut terms = Vec::new();
+        for (m, q) in &self.terms {
+            let (rest, e) = m.split(a);
+            if e == 0 {
+                continue;
+            }
+            let m2 = rest
+                .mul(&Mono::atom(a, e - 1))
+                .unwrap_or_else(|| rest.clone());
+            terms.push((m2, q * Q::from_integer(BigInt::from(e))));
+        }
+        Poly::from_terms(terms)
+    }
+
+    /// The gcd of the numerators over the lcm of the denominators of the coefficients (positive).
+    pub fn content(&self) -> Q {
+        let mut num = BigInt::zero();
+        let mut den = BigInt::one();
+        for (_, q) in &self.terms {
+            num = num.gcd(q.numer());
+            den = den.lcm(q.denom());
+        }
+        if num.is_zero() {
+            return Q::one();
+        }
+        Q::new(num, den)
+    }
+
+    /// `self` divided by its content, with a positive leading coefficient.
+    pub fn primitive(&self) -> Poly {
+        if self.is_zero() {
+            return Poly::zero();
+        }
+        let mut c = self.content();
+        if self.lead().is_some_and(|t| t.1.is_negative()) {
+            c = -c;
+        }
+        self.scale(&c.recip())
+    }
+
+    /// `self` scaled so that its leading coefficient is 1.
+    pub fn monic(&self) -> Poly {
+        match self.lead() {
+            Some((_, q)) if !q.is_one() => self.scale(&q.recip()),
+            _ => self.clone(),
+        }
+    }
+
+    /// The greatest monomial dividing every term.
+    pub fn mono_content(&self) -> Mono {
+        let mut it = self.terms.iter();
+        let Some((first, _)) = it.next() else {
+            return Mono::one();
+        };
+        let mut g = first.clone();
+        for (m, _) in it {
+            if g.is_one() {
+                break;
+            }
+            g = g.gcd(m);
+        }
+        g
+    }
+
+    /// `self / m` for a monomial dividing every term.
+    pub fn div_mono(&self, m: &Mono) -> Option<Poly> {
+        let mut terms = Vec::with_capacity(self.terms.len());
+        for (n, q) in &self.terms {
+            terms.push((n.div(m)?, q.clone()));
+        }
+        Some(Poly { terms })
+    }
+
+    /// Maps every coefficient (the result is re-normalised).
+    pub fn map_coeffs(&self, f: impl Fn(&Q) -> Q) -> Poly {
+        Poly::from_terms(self.terms.iter().map(|(m, q)| (m.clone(), f(q))).collect())
+    }
+}
+
+/// `q^k` exactly.
+pub fn pow_q(q: &Q, k: u32) -> Q {
+    num_traits::pow::Pow::pow(q, k)
+}
+
+/// Whether expanding an `n`-term sum to the `k`-th power fits the limits: the result
+/// (up to C(n+k−1, k) terms) and the work of the last squaring.
+pub fn pow_fits(n: usize, k: u64) -> bool {
+    let half = estimate_pow_terms(n, k / 2);
+    estimate_pow_terms(n, k) <= max_terms() as u128 && half.saturating_mul(half) <= 50_000_000
+}
+
+/// C(n+k-1, k), the term count of a dense power of an n-term sum, saturating.
+fn estimate_pow_terms(n: usize, k: u64) -> u128 {
+    let mut r: u128 = 1;
+    for i in 1..n as u128 {
+        // r = C(k+i, i) stays an exact integer at every step.
+        r = r.saturating_mul(u128::from(k) + i) / i;
+        if r > 1 << 64 {
+            return u128::MAX;
+        }
+    }
+    r
+}

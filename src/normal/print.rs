@@ -1,0 +1,421 @@
+//! Printers of normal forms: plain text that rigor parses back, and LaTeX.
+//!
+//! Both order terms and factors by content ([`cmp_atoms`]), never by interned
+//! ids, so equal values print identically in every run.
+
+use super::atom::{cmp_atoms, get, Atom, AtomId};
+use super::mono::Mono;
+use super::poly::{Poly, Q};
+use super::rat::Rat;
+use num_bigint::BigInt;
+use num_traits::{One, Signed};
+use std::cmp::Ordering;
+
+/// Output syntax.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Style {
+    /// rigor's own expression syntax.
+    Plain,
+    /// LaTeX math.
+    Latex,
+}
+
+/// Factors of a monomial in print order.
+fn sorted_factors(m: &Mono) -> Vec<(AtomId, u32)> {
+    let mut f: Vec<(AtomId, u32)> = m.pairs().to_vec();
+    f.sort_by(|a, b| cmp_atoms(a.0, b.0));
+    f
+}
+
+/// Print order of monomials: higher degree first, then by content.
+fn cmp_monos(a: &Mono, b: &Mono) -> Ordering {
+    b.degree().cmp(&a.degree()).then_with(|| {
+        let (fa, fb) = (sorted_factors(a), sorted_factors(b));
+        for (x, y) in fa.iter().zip(fb.iter()) {
+            let o = cmp_atoms(x.0, y.0).then(y.1.cmp(&x.1));
+            if o != Ordering::Equal {
+                return o;
+            }
+        }
+        fb.len().cmp(&fa.len())
+    })
+}
+
+/// Terms of a polynomial in print order.
+fn print_terms(p: &Poly) -> Vec<(Mono, Q)> {
+    let mut t: Vec<(Mono, Q)> = p.terms().to_vec();
+    t.sort_by(|a, b| cmp_monos(&a.0, &b.0));
+    t
+}
+
+/// The plain text of a normal form.
+pub fn plain(r: &Rat) -> String {
+    render(r, Style::Plain)
+}
+
+/// The LaTeX of a normal form.
+pub fn latex(r: &Rat) -> String {
+    render(r, Style::Latex)
+}
+
+/// Prints a normal form.
+pub fn render(r: &Rat, style: Style) -> String {
+    if r.den().is_one() {
+        return poly(r.num(), style);
+    }
+    // value = (a/b) · num' / den' with num', den' primitive and their first printed term positive.
+    let (cn, num) = primitive_for_print(r.num());
+    let (cd, den) = primitive_for_print(r.den());
+    let k = cn / cd;
+    let (a, b) = (k.numer().clone(), k.denom().clone());
+    let neg = a.is_negative();
+    let a = a.abs();
+    let num_single = num.len() == 1;
+    let num_text = if num_single {
+        let (m, _) = &num.terms()[0];
+        term(m, &Q::from_integer(a.clone()), style, true)
+    } else if a.is_one() {
+        poly(&num, style)
+    } else {
+        match style {
+            Style::Plain => format!("{} ({})", a, poly(&num, style)),
+            Style::Latex => format!("{} \\left({}\\right)", a, poly(&num, style)),
+        }
+    };
+    let den_poly = den.scale(&Q::from_integer(b.clone()));
+    let den_text = poly(&den_poly, style);
+    let sign = if neg { "-" } else { "" };
+    match style {
+        Style::Latex => format!("{sign}\\frac{{{num_text}}}{{{den_text}}}"),
+        Style::Plain => {
+            let num_text = if num_single || a.is_one() && num.len() == 1 {
+                num_text
+            } else if a.is_one() {
+                format!("({num_text})")
+            } else {
+                num_text
+            };
+            let den_atomic = den_poly.len() == 1
+                && den_poly.terms()[0].1.is_one()
+                && den_poly.terms()[0].0.pairs().len() == 1
+                && den_poly.terms()[0].0.pairs()[0].1 == 1;
+            let den_text = if den_atomic {
+                den_text
+            } else {
+                format!("({den_text})")
+            };
+            format!("{sign}{num_text}/{den_text}")
+        }
+    }
+}
+
+/// `p = c · p'` with `p'` having integer coprime coefficients and a positive first printed term.
+fn primitive_for_print(p: &Poly) -> (Q, Poly) {
+    let mut c = p.content();
+    let first = print_terms(p).into_iter().next();
+    if first.is_some_and(|t| t.1.is_negative()) {
+        c = -c;
+    }
+    (c.clone(), p.scale(&c.recip()))
+}
+
+/// A polynomial as a sum of terms.
+pub fn poly(p: &Poly, style: Style) -> String {
+    let terms = print_terms(p);
+    if terms.is_empty() {
+        return "0".into();
+    }
+    let mut out = String::new();
+    for (i, (m, q)) in terms.iter().enumerate() {
+        let neg = q.is_negative();
+        if i == 0 {
+            if neg {
+                out.push('-');
+            }
+        } else {
+            out.push_str(if neg { " - " } else { " + " });
+        }
+        out.push_str(&term(m, &q.abs(), style, false));
+    }
+    out
+}
+
+/// One term `q·m` with `q > 0`. `int_only`: the coefficient is a whole number.
+fn term(m: &Mono, q: &Q, style: Style, int_only: bool) -> String {
+    let factors = factors(m, style);
+    let (n, d) = (q.numer(), q.denom());
+    let _ = int_only;
+    if factors.is_empty() {
+        return number(q, style);
+    }
+    let mut s = String::new();
+    let body = factors.join(match style {
+        Style::Plain => " ",
+        Style::Latex => " ",
+    });
+    match style {
+        Style::Plain => {
+            if !n.is_one() {
+                s.push_str(&n.to_string());
+                s.push(' ');
+            }
+            s.push_str(&body);
+            if !d.is_one() {
+                s.push('/');
+                s.push_str(&d.to_string());
+            }
+        }
+        Style::Latex => {
+            if d.is_one() {
+                if !n.is_one() {
+                    s.push_str(&n.to_string());
+                    s.push_str(" ");
+                }
+                s.push_str(&body);
+            } else {
+                let top = if n.is_one() { body } else { format!("{n} {body}") };
+                s.push_str(&format!("\\frac{{{top}}}{{{d}}}"));
+            }
+        }
+    }
+    s
+}
+
+fn number(q: &Q, style: Style) -> String {
+    match style {
+        Style::Plain => {
+            if q.denom().is_one() {
+                q.numer().to_string()
+            } else {
+                format!("{}/{}", q.numer(), q.denom())
+            }
+        }
+        Style::Latex => {
+            if q.denom().is_one() {
+                q.numer().to_string()
+            } else {
+                let sign = if q.is_negative() { "-" } else { "" };
+                format!("{sign}\\frac{{{}}}{{{}}}", q.numer().abs(), q.denom())
+            }
+        }
+    }
+}
+
+/// The factors of a monomial, numeric square roots merged (`sqrt(2) sqrt(3)` → `sqrt(6)`).
+fn factors(m: &Mono, style: Style) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut radical = BigInt::one();
+    for (a, e) in sorted_factors(m) {
+        let atom = get(a);
+        if let Atom::Sqrt(p) = &*atom {
+            if let Some(c) = p.as_constant() {
+                if c.is_integer() && e == 1 {
+                    radical *= c.to_integer();
+                    continue;
+                }
+            }
+        }
+        let base = atom_text(&atom, style);
+        if e == 1 {
+            out.push(base);
+        } else {
+            let base = if needs_parens_for_power(&atom) {
+                paren(&base, style)
+            } else {
+                base
+            };
+            out.push(match style {
+                Style::Plain => format!("{base}^{e}"),
+                Style::Latex => {
+                    if let Some(rest) = base.strip_prefix("\\sin").or(base.strip_prefix("\\cos")) {
+                        // \sin^2\beta
+                        let f = &base[..4];
+                        format!("{f}^{{{e}}}{rest}")
+                    } else {
+                        format!("{base}^{{{e}}}")
+                    }
+                }
+            });
+        }
+    }
+    if !radical.is_one() {
+        let r = match style {
+            Style::Plain => format!("sqrt({radical})"),
+            Style::Latex => format!("\\sqrt{{{radical}}}"),
+        };
+        out.insert(0, r);
+    }
+    out
+}
+
+fn needs_parens_for_power(a: &Atom) -> bool {
+    matches!(a, Atom::Pow(..) | Atom::Root(..))
+}
+
+fn paren(s: &str, style: Style) -> String {
+    match style {
+        Style::Plain => format!("({s})"),
+        Style::Latex => format!("\\left({s}\\right)"),
+    }
+}
+
+/// Whether a normal form prints as a single factor (no parentheses needed as an argument of `^`).
+fn is_atomic(r: &Rat) -> bool {
+    r.den().is_one()
+        && r.num().len() == 1
+        && r.num().terms()[0].1.is_one()
+        && r.num().terms()[0].0.pairs().len() == 1
+        && r.num().terms()[0].0.pairs()[0].1 == 1
+}
+
+/// The plain text of one atom.
+pub fn atom_plain(a: &Atom) -> String {
+    atom_text(a, Style::Plain)
+}
+
+fn atom_text(a: &Atom, style: Style) -> String {
+    let plain = style == Style::Plain;
+    match a {
+        Atom::Sym(s) => {
+            if plain {
+                s.clone()
+            } else {
+                symbol_latex(s)
+            }
+        }
+        Atom::Pi => if plain { "pi" } else { "\\pi" }.into(),
+        Atom::Sqrt(p) => {
+            if plain {
+                format!("sqrt({})", poly(p, style))
+            } else {
+                format!("\\sqrt{{{}}}", poly(p, style))
+            }
+        }
+        Atom::Root(p, n) => {
+            if plain {
+                format!("({})^(1/{n})", poly(p, style))
+            } else {
+                format!("\\sqrt[{n}]{{{}}}", poly(p, style))
+            }
+        }
+        Atom::Abs(p) => {
+            if plain {
+                format!("abs({})", poly(p, style))
+            } else {
+                format!("\\left|{}\\right|", poly(p, style))
+            }
+        }
+        Atom::Sin(u) | Atom::Cos(u) | Atom::Ln(u) => {
+            let name = match a {
+                Atom::Sin(_) => "sin",
+                Atom::Cos(_) => "cos",
+                _ => "ln",
+            };
+            if plain {
+                format!("{name}({})", render(u, style))
+            } else if is_atomic(u) {
+                format!("\\{name} {}", render(u, style))
+            } else {
+                format!("\\{name}\\left({}\\right)", render(u, style))
+            }
+        }
+        Atom::Exp(u) => {
+            if plain {
+                format!("exp({})", render(u, style))
+            } else {
+                format!("e^{{{}}}", render(u, style))
+            }
+        }
+        Atom::Pow(b, e) => {
+            let bt = render(b, style);
+            let bt = if is_atomic(b) && b.num().terms()[0].0.pairs().len() == 1 {
+                bt
+            } else {
+                paren(&bt, style)
+            };
+            let et = render(e, style);
+            if plain {
+                let et = if e.as_constant().is_some_and(|q| q.is_integer() && !q.is_negative())
+                    || is_atomic(e)
+                {
+                    et
+                } else {
+                    format!("({et})")
+                };
+                format!("{bt}^{et}")
+            } else {
+                format!("{bt}^{{{et}}}")
+            }
+        }
+        Atom::Moment(body, exps) => {
+            let inner = moment_integrand(exps, style);
+            if plain {
+                format!("int({inner}, {body})")
+            } else {
+                let inner = if inner == "1" { String::new() } else { inner };
+                format!("\\int_{{{}}} {inner} \\, dm", symbol_latex(body))
+            }
+        }
+    }
+}
+
+fn moment_integrand(exps: &[(String, u32)], style: Style) -> String {
+    let mut parts = Vec::new();
+    for (name, e) in exps {
+        let name = match style {
+            Style::Plain => name.clone(),
+            Style::Latex => symbol_latex(name),
+        };
+        match (e, style) {
+            (0, _) => {}
+            (1, _) => parts.push(name),
+            (e, Style::Plain) => parts.push(format!("{name}^{e}")),
+            (e, Style::Latex) => parts.push(format!("{name}^{{{e}}}")),
+        }
+    }
+    if parts.is_empty() {
+        "1".into()
+    } else {
+        parts.join(" ")
+    }
+}
+
+const GREEK: &[&str] = &[
+    "alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa",
+    "lambda", "mu", "nu", "xi", "pi", "rho", "sigma", "tau", "upsilon", "phi", "chi", "psi",
+    "omega", "Gamma", "Delta", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Phi", "Psi", "Omega",
+];
+
+fn name_latex(s: &str) -> String {
+    if GREEK.contains(&s) {
+        format!("\\{s}")
+    } else if s.chars().count() > 1 && s.chars().all(|c| c.is_ascii_alphabetic()) {
+        format!("\\mathit{{{s}}}")
+    } else {
+        s.to_string()
+    }
+}
+
+/// A symbol name in LaTeX: Greek letters, subscripts, and primes as dots.
+pub fn symbol_latex(s: &str) -> String {
+    let primes = s.chars().rev().take_while(|c| *c == '\'').count();
+    let s = &s[..s.len() - primes];
+    let (base, sub) = match s.split_once('_') {
+        Some((b, rest)) => (b, Some(rest)),
+        None => (s, None),
+    };
+    let mut out = name_latex(base);
+    out = match primes {
+        0 => out,
+        1 => format!("\\dot{{{out}}}"),
+        2 => format!("\\ddot{{{out}}}"),
+        3 => format!("\\dddot{{{out}}}"),
+        n => format!("{out}^{{({n})}}"),
+    };
+    if let Some(sub) = sub {
+        let parts: Vec<String> = sub.split('_').map(name_latex).collect();
+        let sub = parts.join(",");
+        out = format!("{out}_{{{sub}}}");
+    }
+    out
+}

@@ -1,0 +1,284 @@
+//! Rational functions in atoms: the normal form. Canonical by construction.
+//!
+//! A [`Rat`] is `num / den` with both polynomials reduced by the atoms' rules
+//! (`sqrt(a)² = a`, `cos² = 1 − sin²`, merged exponentials), square roots
+//! rationalised out of the denominator, the gcd cancelled, and the denominator
+//! monic. Every constructor goes through [`Rat::new`].
+
+use super::gcd::{div_exact, gcd};
+use super::poly::{Poly, Q};
+use super::reduce::{rationalise, reduce};
+use super::{Limit, NormError};
+use num_traits::{One, Zero};
+
+/// A normal form: a reduced rational function over ℚ in atoms.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Rat {
+    num: Poly,
+    den: Poly,
+}
+
+impl Rat {
+    /// The canonical form of `num / den`. Fails when `den` is zero.
+    pub fn new(num: Poly, den: Poly) -> Result<Rat, NormError> {
+        let den = reduce(&den)?;
+        if den.is_zero() {
+            return Err(NormError::DivisionByZero);
+        }
+        let num = reduce(&num)?;
+        if num.is_zero() {
+            return Ok(Rat::zero());
+        }
+        if let Some(c) = den.as_constant() {
+            return Ok(Rat {
+                num: num.scale(&c.recip()),
+                den: Poly::one(),
+            });
+        }
+        let (num, den) = rationalise(num, den)?;
+        if den.is_zero() {
+            return Err(NormError::DivisionByZero);
+        }
+        Self::cancel(num, den).map_err(NormError::from)
+    }
+
+    /// Cancels the gcd and makes the denominator monic.
+    fn cancel(num: Poly, den: Poly) -> Result<Rat, Limit> {
+        if num.is_zero() {
+            return Ok(Rat::zero());
+        }
+        if let Some(c) = den.as_constant() {
+            return Ok(Rat {
+                num: num.scale(&c.recip()),
+                den: Poly::one(),
+            });
+        }
+        let g = gcd(&num, &den)?;
+        let (num, den) = if g.is_one() {
+            (num, den)
+        } else {
+            (
+                div_exact(&num, &g)?.unwrap_or(num),
+                div_exact(&den, &g)?.unwrap_or(den),
+            )
+        };
+        let lc = den.lead().map(|t| t.1.clone()).unwrap_or_else(Q::one);
+        let inv = lc.recip();
+        Ok(Rat {
+            num: num.scale(&inv),
+            den: den.scale(&inv),
+        })
+    }
+
+    /// A polynomial as a rational function (reduced).
+    pub fn poly(p: Poly) -> Result<Rat, NormError> {
+        Ok(Rat {
+            num: reduce(&p)?,
+            den: Poly::one(),
+        })
+    }
+
+    /// A polynomial already reduced (no rule of any atom applies).
+    pub(crate) fn from_reduced(p: Poly) -> Rat {
+        Rat {
+            num: p,
+            den: Poly::one(),
+        }
+    }
+
+    /// 0.
+    pub fn zero() -> Rat {
+        Rat {
+            num: Poly::zero(),
+            den: Poly::one(),
+        }
+    }
+
+    /// 1.
+    pub fn one() -> Rat {
+        Rat::constant(Q::one())
+    }
+
+    /// A rational number.
+    pub fn constant(q: Q) -> Rat {
+        Rat {
+            num: Poly::constant(q),
+            den: Poly::one(),
+        }
+    }
+
+    /// An integer.
+    pub fn int(n: i64) -> Rat {
+        Rat::constant(Q::from_integer(n.into()))
+    }
+
+    /// An atom.
+    pub fn atom(a: super::atom::AtomId) -> Rat {
+        Rat {
+            num: Poly::atom(a),
+            den: Poly::one(),
+        }
+    }
+
+    /// The numerator.
+    pub fn num(&self) -> &Poly {
+        &self.num
+    }
+
+    /// The denominator (monic; `1` for polynomials).
+    pub fn den(&self) -> &Poly {
+        &self.den
+    }
+
+    /// Whether this is 0.
+    pub fn is_zero(&self) -> bool {
+        self.num.is_zero()
+    }
+
+    /// The value, if a rational number.
+    pub fn as_constant(&self) -> Option<Q> {
+        if self.den.is_one() {
+            self.num.as_constant()
+        } else {
+            None
+        }
+    }
+
+    /// The polynomial, if the denominator is 1.
+    pub fn as_poly(&self) -> Option<&Poly> {
+        self.den.is_one().then_some(&self.num)
+    }
+
+    /// Whether this is the atom `a` exactly.
+    pub fn as_atom(&self) -> Option<super::atom::AtomId> {
+        if self.den.is_one() {
+            self.num.as_atom()
+        } else {
+            None
+        }
+    }
+
+    /// The sum.
+    pub fn add(&self, o: &Rat) -> Result<Rat, NormError> {
+        if self.is_zero() {
+            return Ok(o.clone());
+        }
+        if o.is_zero() {
+            return Ok(self.clone());
+        }
+        if self.den == o.den {
+            let num = self.num.add(&o.num);
+            if self.den.is_one() {
+                return Ok(Rat {
+                    num,
+                    den: Poly::one(),
+                });
+            }
+            return Rat::cancel(num, self.den.clone()).map_err(NormError::from);
+        }
+        let num = self.num.mul(&o.den)?.add(&o.num.mul(&self.den)?);
+        let den = self.den.mul(&o.den)?;
+        Rat::new(num, den)
+    }
+
+    /// The negation.
+    pub fn neg(&self) -> Rat {
+        Rat {
+            num: self.num.neg(),
+            den: self.den.clone(),
+        }
+    }
+
+    /// The difference.
+    pub fn sub(&self, o: &Rat) -> Result<Rat, NormError> {
+        self.add(&o.neg())
+    }
+
+    /// The product.
+    pub fn mul(&self, o: &Rat) -> Result<Rat, NormError> {
+        if self.is_zero() || o.is_zero() {
+            return Ok(Rat::zero());
+        }
+        if let Some(c) = o.as_constant() {
+            return Ok(self.scale(&c));
+        }
+        if let Some(c) = self.as_constant() {
+            return Ok(o.scale(&c));
+        }
+        Rat::new(self.num.mul(&o.num)?, self.den.mul(&o.den)?)
+    }
+
+    /// `q · self`.
+    pub fn scale(&self, q: &Q) -> Rat {
+        if q.is_zero() {
+            return Rat::zero();
+        }
+        Rat {
+            num: self.num.scale(q),
+            den: self.den.clone(),
+        }
+    }
+
+    /// The quotient; `DivisionByZero` when `o` is zero.
+    pub fn div(&self, o: &Rat) -> Result<Rat, NormError> {
+        if o.is_zero() {
+            return Err(NormError::DivisionByZero);
+        }
+        if let Some(c) = o.as_constant() {
+            return Ok(self.scale(&c.recip()));
+        }
+        Rat::new(self.num.mul(&o.den)?, self.den.mul(&o.num)?)
+    }
+
+    /// The reciprocal.
+    pub fn recip(&self) -> Result<Rat, NormError> {
+        Rat::one().div(self)
+    }
+
+    /// `self^k` for an integer `k` (negative: the reciprocal's power).
+    pub fn powi(&self, k: i64) -> Result<Rat, NormError> {
+        if k == 0 {
+            if self.is_zero() {
+                return Err(NormError::ZeroToZero);
+            }
+            return Ok(Rat::one());
+        }
+        let base = if k < 0 { self.recip()? } else { self.clone() };
+        let e = k.unsigned_abs();
+        if base.num.len() <= 1 && base.den.len() <= 1 {
+            // Monomials: no expansion, exponents multiply (x^(10^9) is one term).
+            return Rat::new(base.num.pow(e)?, base.den.pow(e)?);
+        }
+        // Powers of sums: square and multiply, reducing as we go.
+        if !super::poly::pow_fits(base.num.len().max(base.den.len()), e) {
+            return Err(Limit::Terms.into());
+        }
+        let mut result = Rat::one();
+        let mut b = base;
+        let mut e = e;
+        while e > 0 {
+            if e & 1 == 1 {
+                result = result.mul(&b)?;
+            }
+            e >>= 1;
+            if e > 0 {
+                b = b.mul(&b)?;
+            }
+        }
+        Ok(result)
+    }
+
+    /// All atoms in numerator and denominator.
+    pub fn atoms(&self) -> Vec<super::atom::AtomId> {
+        let mut v = self.num.atoms();
+        v.extend(self.den.atoms());
+        v.sort_unstable();
+        v.dedup();
+        v
+    }
+
+    /// Whether atom `a` occurs.
+    pub fn contains(&self, a: super::atom::AtomId) -> bool {
+        self.num.contains(a) || self.den.contains(a)
+    }
+}

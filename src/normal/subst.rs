@@ -1,0 +1,194 @@
+//! Substitution: replacing atoms by normal forms, rebuilding the atoms that contain them.
+
+use super::atom::{self, Atom, AtomId};
+use super::func;
+use super::mono::Mono;
+use super::poly::{Poly, Q};
+use super::rat::Rat;
+use super::sign::Assumptions;
+use super::trig;
+use super::NormError;
+use num_traits::One;
+use std::collections::HashMap;
+
+/// Replaces atoms: `map(a)` gives the new value of atom `a` (or `None` to keep it,
+/// in which case atoms inside its arguments are still replaced).
+pub struct Subst<'a> {
+    map: &'a dyn Fn(AtomId) -> Option<Rat>,
+    signs: &'a Assumptions,
+    memo: HashMap<AtomId, Option<Rat>>,
+}
+
+impl<'a> Subst<'a> {
+    /// A substitution.
+    pub fn new(map: &'a dyn Fn(AtomId) -> Option<Rat>, signs: &'a Assumptions) -> Subst<'a> {
+        Subst {
+            map,
+            signs,
+            memo: HashMap::new(),
+        }
+    }
+
+    /// The new value of atom `a`, `None` if unchanged.
+    fn atom(&mut self, a: AtomId) -> Result<Option<Rat>, NormError> {
+        if let Some(v) = self.memo.get(&a) {
+            return Ok(v.clone());
+        }
+        let v = match (self.map)(a) {
+            Some(v) => Some(v),
+            None => self.rebuild(a)?,
+        };
+        self.memo.insert(a, v.clone());
+        Ok(v)
+    }
+
+    fn rebuild(&mut self, a: AtomId) -> Result<Option<Rat>, NormError> {
+        let at = atom::get(a);
+        let s = self.signs;
+        Ok(match &*at {
+            Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => None,
+            Atom::Sqrt(p) => self.poly_changed(p)?.map(|v| func::sqrt(&v, s)).transpose()?,
+            Atom::Root(p, n) => self.poly_changed(p)?.map(|v| func::root(&v, *n, s)).transpose()?,
+            Atom::Abs(p) => self.poly_changed(p)?.map(|v| func::abs(&v, s)).transpose()?,
+            Atom::Sin(u) => self.rat_changed(u)?.map(|v| trig::sin(&v)).transpose()?,
+            Atom::Cos(u) => self.rat_changed(u)?.map(|v| trig::cos(&v)).transpose()?,
+            Atom::Exp(u) => self.rat_changed(u)?.map(|v| func::exp(&v)).transpose()?,
+            Atom::Ln(u) => self.rat_changed(u)?.map(|v| func::ln(&v, s)).transpose()?,
+            Atom::Pow(b, e) => {
+                let nb = self.rat_changed(b)?;
+                let ne = self.rat_changed(e)?;
+                if nb.is_none() && ne.is_none() {
+                    None
+                } else {
+                    let b = nb.unwrap_or_else(|| b.clone());
+                    let e = ne.unwrap_or_else(|| e.clone());
+                    Some(func::pow(&b, &e, s)?)
+                }
+            }
+        })
+    }
+
+    fn poly_changed(&mut self, p: &Poly) -> Result<Option<Rat>, NormError> {
+        let mut changed = false;
+        for a in p.atoms() {
+            if self.atom(a)?.is_some() {
+                changed = true;
+            }
+        }
+        if !changed {
+            return Ok(None);
+        }
+        self.poly(p).map(Some)
+    }
+
+    fn rat_changed(&mut self, r: &Rat) -> Result<Option<Rat>, NormError> {
+        let n = self.poly_changed(r.num())?;
+        let d = self.poly_changed(r.den())?;
+        if n.is_none() && d.is_none() {
+            return Ok(None);
+        }
+        let n = match n {
+            Some(n) => n,
+            None => Rat::poly(r.num().clone())?,
+        };
+        let d = match d {
+            Some(d) => d,
+            None => Rat::poly(r.den().clone())?,
+        };
+        n.div(&d).map(Some)
+    }
+
+    /// The polynomial with every atom replaced, as one rational function.
+    pub fn poly(&mut self, p: &Poly) -> Result<Rat, NormError> {
+        let atoms = p.atoms();
+        let mut vals: HashMap<AtomId, Rat> = HashMap::new();
+        for a in &atoms {
+            if let Some(v) = self.atom(*a)? {
+                vals.insert(*a, v);
+            }
+        }
+        if vals.is_empty() {
+            return Rat::poly(p.clone());
+        }
+        // Common denominator: Π q_a^{D_a}, D_a the top exponent of a.
+        let mut top: HashMap<AtomId, u32> = HashMap::new();
+        for (m, _) in p.terms() {
+            for &(a, e) in m.pairs() {
+                if vals.contains_key(&a) {
+                    let t = top.entry(a).or_insert(0);
+                    *t = (*t).max(e);
+                }
+            }
+        }
+        let mut num = Poly::zero();
+        for (m, q) in p.terms() {
+            let mut keep = Vec::new();
+            let mut t = Poly::constant(q.clone());
+            for &(a, e) in m.pairs() {
+                match vals.get(&a) {
+                    Some(v) => t = t.mul(&v.num().pow(u64::from(e))?)?,
+                    None => keep.push((a, e)),
+                }
+            }
+            for (a, d) in &top {
+                let e = m.exp(*a);
+                if let Some(v) = vals.get(a) {
+                    if !v.den().is_one() && *d > e {
+                        t = t.mul(&v.den().pow(u64::from(d - e))?)?;
+                    }
+                }
+            }
+            let keep = Mono::from_pairs(keep).ok_or(super::Limit::Exponent)?;
+            num = num.add(&t.mul_term(&keep, &Q::one())?);
+        }
+        let mut den = Poly::one();
+        for (a, d) in &top {
+            if let Some(v) = vals.get(a) {
+                if !v.den().is_one() {
+                    den = den.mul(&v.den().pow(u64::from(*d))?)?;
+                }
+            }
+        }
+        Rat::new(num, den)
+    }
+
+    /// The rational function with every atom replaced.
+    pub fn rat(&mut self, r: &Rat) -> Result<Rat, NormError> {
+        let n = self.poly(r.num())?;
+        if r.den().is_one() {
+            return Ok(n);
+        }
+        let d = self.poly(r.den())?;
+        n.div(&d)
+    }
+}
+
+/// `r` with atom `x` replaced by `v`.
+pub fn subst_atom(r: &Rat, x: AtomId, v: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
+    if !depends_on(r, x) {
+        return Ok(r.clone());
+    }
+    let f = |a: AtomId| (a == x).then(|| v.clone());
+    Subst::new(&f, s).rat(r)
+}
+
+/// Whether `r` depends on atom `x`, also inside the arguments of other atoms.
+pub fn depends_on(r: &Rat, x: AtomId) -> bool {
+    r.atoms().iter().any(|a| atom_depends_on(*a, x))
+}
+
+/// Whether atom `a` is or contains atom `x`.
+pub fn atom_depends_on(a: AtomId, x: AtomId) -> bool {
+    if a == x {
+        return true;
+    }
+    let at = atom::get(a);
+    let p = |p: &Poly| p.atoms().iter().any(|b| atom_depends_on(*b, x));
+    let r = |r: &Rat| depends_on(r, x);
+    match &*at {
+        Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => false,
+        Atom::Sqrt(q) | Atom::Root(q, _) | Atom::Abs(q) => p(q),
+        Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) => r(u),
+        Atom::Pow(b, e) => r(b) || r(e),
+    }
+}

@@ -1,0 +1,144 @@
+//! Sines and cosines: sums and integer multiples expanded, exact values at multiples of π/12.
+//!
+//! An argument `Σ qᵢ·mᵢ` is split into terms; a term `(a/b)·m` is the integer
+//! multiple `a` of the base angle `m/b`, so `sin(2θ)` becomes `2 sin θ cos θ` while
+//! `sin(θ/2)` stays an atom. The `π` term is reduced modulo 2π and, at multiples of
+//! π/12 (so every multiple of π/6 and π/4), replaced by its exact value.
+
+use super::atom::{self, Atom};
+use super::mono::Mono;
+use super::poly::{Poly, Q};
+use super::rat::Rat;
+use super::NormError;
+use num_bigint::BigInt;
+use num_traits::{One, Signed, ToPrimitive, Zero};
+
+/// Multiples larger than this stay unexpanded atoms (`sin(1000 x)`).
+const MAX_MULTIPLE: i64 = 32;
+
+/// `(cos u, sin u)`.
+type Pair = (Rat, Rat);
+
+fn rotate(a: &Pair, b: &Pair) -> Result<Pair, NormError> {
+    let c = a.0.mul(&b.0)?.sub(&a.1.mul(&b.1)?)?;
+    let s = a.1.mul(&b.0)?.add(&a.0.mul(&b.1)?)?;
+    Ok((c, s))
+}
+
+fn atoms_of(base: Rat) -> Pair {
+    (
+        Rat::atom(atom::intern(Atom::Cos(base.clone()))),
+        Rat::atom(atom::intern(Atom::Sin(base))),
+    )
+}
+
+/// The pair of `k·base` for an atom pair of `base`.
+fn multiple(p: &Pair, k: i64) -> Result<Pair, NormError> {
+    let mut result: Pair = (Rat::one(), Rat::zero());
+    let mut b = p.clone();
+    let mut e = k.unsigned_abs();
+    while e > 0 {
+        if e & 1 == 1 {
+            result = rotate(&result, &b)?;
+        }
+        e >>= 1;
+        if e > 0 {
+            b = rotate(&b, &b)?;
+        }
+    }
+    if k < 0 {
+        result.1 = result.1.neg();
+    }
+    Ok(result)
+}
+
+fn sqrt_prime(p: i64) -> Rat {
+    Rat::atom(atom::intern(Atom::Sqrt(Poly::int(p))))
+}
+
+/// `(cos(jπ/12), sin(jπ/12))` exactly.
+fn exact_pi_twelfths(j: i64) -> Result<Pair, NormError> {
+    let j = j.rem_euclid(24);
+    let quarter = Q::new(BigInt::from(1), BigInt::from(4));
+    let s6 = sqrt_prime(2).mul(&sqrt_prime(3))?;
+    let c15 = s6.add(&sqrt_prime(2))?.scale(&quarter);
+    let s15 = s6.sub(&sqrt_prime(2))?.scale(&quarter);
+    multiple(&(c15, s15), j)
+}
+
+/// The pair of the argument `u`.
+fn pair(u: &Rat) -> Result<Pair, NormError> {
+    if u.is_zero() {
+        return Ok((Rat::one(), Rat::zero()));
+    }
+    let Some(p) = u.as_poly() else {
+        let neg = u.num().lead().is_some_and(|t| t.1.is_negative());
+        return Ok(if neg {
+            let (c, s) = atoms_of(u.neg());
+            (c, s.neg())
+        } else {
+            atoms_of(u.clone())
+        });
+    };
+    let pi = atom::intern(Atom::Pi);
+    let mut total: Pair = (Rat::one(), Rat::zero());
+    for (m, q) in p.terms() {
+        let part = if m.pairs() == [(pi, 1)] {
+            pi_pair(q)?
+        } else if m.is_one() {
+            let p = atoms_of(Rat::constant(q.abs()));
+            multiple(&p, if q.is_negative() { -1 } else { 1 })?
+        } else {
+            let k = q.numer().to_i64().filter(|k| k.abs() <= MAX_MULTIPLE);
+            match k {
+                Some(k) => {
+                    let b = Q::new(BigInt::one(), q.denom().clone());
+                    multiple(&atoms_of(Rat::poly(Poly::term(m.clone(), b))?), k)?
+                }
+                None => {
+                    let base = Rat::poly(Poly::term(m.clone(), q.abs()))?;
+                    multiple(&atoms_of(base), if q.is_negative() { -1 } else { 1 })?
+                }
+            }
+        };
+        total = rotate(&total, &part)?;
+    }
+    Ok(total)
+}
+
+/// The pair of `q·π`.
+fn pi_pair(q: &Q) -> Result<Pair, NormError> {
+    let two = Q::from_integer(BigInt::from(2));
+    // q mod 2, in [0, 2).
+    let r = q - (q / &two).floor() * &two;
+    let twelve = &r * Q::from_integer(BigInt::from(12));
+    if twelve.is_integer() {
+        let j = twelve.to_integer().to_i64().unwrap_or(0);
+        return exact_pi_twelfths(j);
+    }
+    // sin(x + π) = −sin x: keep the atom's angle in (0, π).
+    let (r, flip) = if r > Q::one() { (r - Q::one(), true) } else { (r, false) };
+    let pi = atom::intern(Atom::Pi);
+    let (c, s) = atoms_of(Rat::poly(Poly::term(Mono::atom(pi, 1), r))?);
+    Ok(if flip { (c.neg(), s.neg()) } else { (c, s) })
+}
+
+/// `sin(u)`.
+pub fn sin(u: &Rat) -> Result<Rat, NormError> {
+    Ok(pair(u)?.1)
+}
+
+/// `cos(u)`.
+pub fn cos(u: &Rat) -> Result<Rat, NormError> {
+    Ok(pair(u)?.0)
+}
+
+/// `tan(u) = sin(u)/cos(u)`; an error where the cosine is exactly zero.
+pub fn tan(u: &Rat) -> Result<Rat, NormError> {
+    let (c, s) = pair(u)?;
+    if c.is_zero() {
+        return Err(NormError::DivisionByZero);
+    }
+    s.div(&c)
+}
+

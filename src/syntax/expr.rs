@@ -1,0 +1,343 @@
+//! Expressions (FORMAT.md §1): one precedence climber over `+ - * / ^`, juxtaposition and
+//! unary minus, and the primaries under it (numbers, names, `pi`, parentheses, calls).
+
+use super::ast::{BinOp, Chain, Expr, ExprKind, Func, Span};
+use super::chain::{chain_or_expr, ChainRules};
+use super::error::{failure, no_match, Fail, PResult, ParseOptions, SyntaxError};
+use super::lex::{describe, end, expected, ident, is_reserved, number, token_len, ws, Cx, Ident};
+use num_rational::BigRational;
+
+/// Parses `src` as one expression (surrounding whitespace allowed).
+///
+/// Spans are byte offsets into `src`.
+pub fn parse_expr(src: &str, opts: &ParseOptions) -> Result<Expr, SyntaxError> {
+    let cx = Cx::new(src, opts.max_depth, false, "the end of the input");
+    let parsed = expr(&cx, src, "").and_then(|(rest, e)| {
+        let (rest, ()) = end(&cx, rest, "an operator or the end of the expression")?;
+        Ok((rest, e))
+    });
+    parsed.map(|(_, e)| e).map_err(|e| cx.error(e))
+}
+
+/// Parses `src` as a relation or chain of relations, `expr (relop expr)+`.
+///
+/// Spans are byte offsets into `src`.
+pub fn parse_chain(src: &str, opts: &ParseOptions) -> Result<Chain, SyntaxError> {
+    let cx = Cx::new(src, opts.max_depth, false, "the end of the input");
+    let rules = ChainRules { after: "", by: false, where_: false };
+    let parsed = chain_or_expr(&cx, src, rules).and_then(|(rest, (first, links))| {
+        if links.is_empty() {
+            return expected(&cx, rest, "an operator or a relation (`=`, `!=`, `<`, `<=`, `>`, `>=`, `~=`)");
+        }
+        let (rest, ()) = end(&cx, rest, "an operator, a relation or the end of the input")?;
+        Ok((rest, Chain { first, links }))
+    });
+    parsed.map(|(_, c)| c).map_err(|e| cx.error(e))
+}
+
+/// `expr`: a whole expression at the start of `i` (after whitespace); `after` names what
+/// came before it for the "expected an expression after `=`" message.
+pub(crate) fn expr<'a>(cx: &Cx<'a>, i: &'a str, after: &str) -> PResult<'a, Expr> {
+    let (rest, (e, _height)) = climb(cx, i, 0, 0, after)?;
+    Ok((rest, e))
+}
+
+/// An expression with the height of its tree; the height is bounded like the nesting
+/// depth so that no later recursive pass over the tree (or its drop) can overflow.
+type Tree = (Expr, usize);
+
+/// The binary operators; their precedence and associativity live in [`Infix::prec`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Infix {
+    /// `+`
+    Add,
+    /// `-`, `−`
+    Sub,
+    /// `*`, `·`, `×`
+    Mul,
+    /// `/`
+    Div,
+    /// `^`
+    Pow,
+    /// Two factors side by side: `2 m`, `(a+b)(a-b)`.
+    Juxt,
+}
+
+/// The precedence of `^`: a unary minus and a juxtaposed factor take an operand at this level.
+const POWER: u8 = 3;
+
+impl Infix {
+    /// Binding strength: `+ -` < `* / juxtaposition` < `^`.
+    fn prec(self) -> u8 {
+        match self {
+            Infix::Add | Infix::Sub => 1,
+            Infix::Mul | Infix::Div | Infix::Juxt => 2,
+            Infix::Pow => POWER,
+        }
+    }
+
+    /// `^` groups to the right, the others to the left.
+    fn right_assoc(self) -> bool {
+        self == Infix::Pow
+    }
+
+    /// The node the operator builds.
+    fn bin_op(self) -> BinOp {
+        match self {
+            Infix::Add => BinOp::Add,
+            Infix::Sub => BinOp::Sub,
+            Infix::Mul | Infix::Juxt => BinOp::Mul,
+            Infix::Div => BinOp::Div,
+            Infix::Pow => BinOp::Pow,
+        }
+    }
+}
+
+/// The written forms of the binary operators.
+const INFIX: [(&str, Infix); 9] = [
+    ("+", Infix::Add),
+    ("-", Infix::Sub),
+    ("−", Infix::Sub),
+    ("*", Infix::Mul),
+    ("·", Infix::Mul),
+    ("⋅", Infix::Mul),
+    ("×", Infix::Mul),
+    ("/", Infix::Div),
+    ("^", Infix::Pow),
+];
+
+/// The operator after whitespace: its kind, its text, the input at it and after it.
+/// A factor that could start a product (never `-` or `+`) is juxtaposition, consuming nothing.
+fn infix<'a>(cx: &Cx<'a>, i: &'a str) -> Option<(Infix, &'static str, &'a str, &'a str)> {
+    let at = ws(cx, i);
+    for (text, op) in INFIX {
+        if let Some(rest) = at.strip_prefix(text) {
+            return Some((op, text, at, rest));
+        }
+    }
+    starts_factor(at).then_some((Infix::Juxt, "", at, at))
+}
+
+/// Whether `i` starts a primary: a number, a name that is not a reserved word, `(` or `√`.
+fn starts_factor(i: &str) -> bool {
+    let mut chars = i.chars();
+    match chars.next() {
+        Some(c) if c.is_ascii_digit() || c == '(' || c == '√' => true,
+        Some('.') => chars.next().is_some_and(|c| c.is_ascii_digit()),
+        _ => matches!(ident(i), Ok((_, id)) if !is_reserved(&id.name)),
+    }
+}
+
+/// The precedence climber: operands joined by operators binding at least `min_prec`.
+///
+/// Left-associative operators recurse at most once per precedence level; `^` recurses
+/// once per operator and so counts towards the nesting depth.
+fn climb<'a>(cx: &Cx<'a>, i: &'a str, min_prec: u8, depth: usize, after: &str) -> PResult<'a, Tree> {
+    let (mut i, mut lhs) = prefix(cx, i, depth, after)?;
+    while let Some((op, text, at, rest)) = infix(cx, i) {
+        if op.prec() < min_prec {
+            break;
+        }
+        let (rest, rhs) = if op.right_assoc() {
+            let (_, deeper) = cx.enter(at, depth)?;
+            climb(cx, rest, op.prec(), deeper, text)?
+        } else {
+            climb(cx, rest, op.prec().saturating_add(1), depth, text)?
+        };
+        let span = lhs.0.span.to(rhs.0.span);
+        let height = lhs.1.max(rhs.1);
+        let kind = ExprKind::Bin(op.bin_op(), Box::new(lhs.0), Box::new(rhs.0));
+        lhs = node(cx, at, kind, span, height)?;
+        i = rest;
+    }
+    Ok((i, lhs))
+}
+
+/// A node over children of height `below`, unless the tree gets too tall (error at `at`).
+fn node<'a>(cx: &Cx<'a>, at: &'a str, kind: ExprKind, span: Span, below: usize) -> Result<Tree, Fail<'a>> {
+    let height = below.saturating_add(1);
+    if height > cx.max_height {
+        let message = format!(
+            "expression too large: more than {} operations inside one another; split it with `let`",
+            cx.max_height
+        );
+        return failure(at, token_len(at).max(1), message).map(|(_, t)| t);
+    }
+    Ok((Expr::new(kind, span), height))
+}
+
+/// `prefix = ("-" | "−" | "+") prefix-operand | postfixed`, where the operand of a sign
+/// is a power (`-x^2` is `-(x^2)`) and a sign may follow `^` (`2^-1`).
+fn prefix<'a>(cx: &Cx<'a>, i: &'a str, depth: usize, after: &str) -> PResult<'a, Tree> {
+    let at = ws(cx, i);
+    for (sign, negate) in [("-", true), ("−", true), ("+", false)] {
+        if let Some(rest) = at.strip_prefix(sign) {
+            let (_, deeper) = cx.enter(at, depth)?;
+            let (rest, (e, height)) = climb(cx, rest, POWER, deeper, sign)?;
+            let span = Span::new(cx.pos(at), e.span.end);
+            let tree = if negate {
+                node(cx, at, ExprKind::Neg(Box::new(e)), span, height)?
+            } else {
+                (Expr::new(e.kind, span), height)
+            };
+            return Ok((rest, tree));
+        }
+    }
+    match postfixed(cx, at, depth) {
+        Err(nom::Err::Error(_)) => {
+            let what = if after.is_empty() { "expected an expression".to_string() } else { format!("expected an expression after `{after}`") };
+            let message = if at.is_empty() { what } else { format!("{what}, found {}", describe(cx, at)) };
+            failure(at, token_len(at), message)
+        }
+        other => other,
+    }
+}
+
+/// `postfixed = primary ("²" | "³")*`.
+fn postfixed<'a>(cx: &Cx<'a>, at: &'a str, depth: usize) -> PResult<'a, Tree> {
+    let (mut i, mut tree) = primary(cx, at, depth)?;
+    loop {
+        let (power, c) = match i.chars().next() {
+            Some(c @ '²') => (2u8, c),
+            Some(c @ '³') => (3u8, c),
+            _ => return Ok((i, tree)),
+        };
+        let rest = i.get(c.len_utf8()..).unwrap_or("");
+        let exponent = Expr::new(ExprKind::Num(BigRational::from_integer(power.into())), cx.span(i, rest));
+        let span = tree.0.span.to(exponent.span);
+        let kind = ExprKind::Bin(BinOp::Pow, Box::new(tree.0), Box::new(exponent));
+        tree = node(cx, i, kind, span, tree.1)?;
+        i = rest;
+    }
+}
+
+/// `primary = number | "(" expr ")" | "√" primary | name | call`; `at` is past whitespace.
+/// Anything else is a recoverable no-match, so the caller can say what it expected.
+fn primary<'a>(cx: &Cx<'a>, at: &'a str, depth: usize) -> PResult<'a, Tree> {
+    match number(at) {
+        Ok((rest, n)) => return Ok((rest, (Expr::new(ExprKind::Num(n), cx.span(at, rest)), 1))),
+        Err(nom::Err::Error(_)) => {}
+        Err(e) => return Err(e),
+    }
+    if let Some(inner) = at.strip_prefix('(') {
+        return group(cx, at, inner, depth);
+    }
+    if let Some(rest) = at.strip_prefix('√') {
+        return root(cx, at, rest, depth);
+    }
+    match ident(at) {
+        Ok((rest, id)) => name(cx, at, rest, id, depth),
+        Err(_) => no_match(at),
+    }
+}
+
+/// `group = "(" expr ")"`; the node keeps the inner kind and spans the parentheses.
+fn group<'a>(cx: &Cx<'a>, open: &'a str, inner: &'a str, depth: usize) -> PResult<'a, Tree> {
+    let (_, deeper) = cx.enter(open, depth)?;
+    let (rest, (e, height)) = climb(cx, inner, 0, deeper, "(")?;
+    let rest = close(cx, open, rest)?;
+    Ok((rest, (Expr::new(e.kind, cx.span(open, rest)), height)))
+}
+
+/// The `)` matching the `(` at `open`: "unclosed `(`" at the end, "expected `)`" elsewhere.
+fn close<'a>(cx: &Cx<'a>, open: &'a str, i: &'a str) -> Result<&'a str, Fail<'a>> {
+    let at = ws(cx, i);
+    if let Some(rest) = at.strip_prefix(')') {
+        return Ok(rest);
+    }
+    let failed = if at.is_empty() {
+        failure::<()>(open, 1, "unclosed `(`")
+    } else {
+        failure(at, token_len(at), format!("expected `)`, found {}", describe(cx, at)))
+    };
+    failed.map(|_| at)
+}
+
+/// `root = "√" primary`: `√(a+b)`, `√2`, `√x` are `sqrt(…)`.
+fn root<'a>(cx: &Cx<'a>, at: &'a str, rest: &'a str, depth: usize) -> PResult<'a, Tree> {
+    let (_, deeper) = cx.enter(at, depth)?;
+    let (rest, (arg, height)) = match primary(cx, rest, deeper) {
+        Err(nom::Err::Error(_)) => return failure(at, '√'.len_utf8(), "expected `(` after `√`: √(…)"),
+        other => other?,
+    };
+    let span = Span::new(cx.pos(at), arg.span.end);
+    let tree = node(cx, at, ExprKind::Call(Func::Sqrt, vec![arg]), span, height)?;
+    Ok((rest, tree))
+}
+
+/// `name`: a symbol, `pi`, or a function call when a known function touches its `(`.
+fn name<'a>(cx: &Cx<'a>, at: &'a str, rest: &'a str, id: Ident<'a>, depth: usize) -> PResult<'a, Tree> {
+    if is_reserved(&id.name) {
+        return no_match(at);
+    }
+    let len = id.raw.len();
+    let touches_paren = rest.starts_with('(');
+    if let Some(f) = Func::from_name(&id.name) {
+        if touches_paren {
+            return call(cx, at, f, rest, depth);
+        }
+        let hint = if rest.starts_with(['^', '²', '³']) { format!("; write {0}(x)^2 for a power of {0}", id.raw) } else { String::new() };
+        return failure(at, len, format!("`{0}` needs its argument in parentheses: {0}(…){hint}", id.raw));
+    }
+    if touches_paren {
+        return failure(at, len, format!("unknown function {0}; write {0}*(x) or {0} (x) for a product", id.raw));
+    }
+    let kind = if id.name == "pi" { ExprKind::Pi } else { ExprKind::Sym(id.name) };
+    Ok((rest, (Expr::new(kind, cx.span(at, rest)), 1)))
+}
+
+/// `call = func "(" expr ("," expr)* ")"`, with the number of arguments checked.
+fn call<'a>(cx: &Cx<'a>, at: &'a str, f: Func, open: &'a str, depth: usize) -> PResult<'a, Tree> {
+    let (_, deeper) = cx.enter(open, depth)?;
+    let mut args = Vec::new();
+    let mut height = 0;
+    let mut i = open.get(1..).unwrap_or("");
+    let mut after = "(";
+    loop {
+        let (rest, (arg, h)) = climb(cx, i, 0, deeper, after)?;
+        args.push(arg);
+        height = height.max(h);
+        let next = ws(cx, rest);
+        if let Some(rest) = next.strip_prefix(',') {
+            (i, after) = (rest, ",");
+        } else if let Some(rest) = next.strip_prefix(')') {
+            i = rest;
+            break;
+        } else if next.is_empty() {
+            return failure(open, 1, "unclosed `(`");
+        } else {
+            let message = format!("expected `,` or `)` in the arguments of `{}`, found {}", f.name(), describe(cx, next));
+            return failure(next, token_len(next), message);
+        }
+    }
+    let span = cx.span(at, i);
+    if !arity_ok(f, args.len()) {
+        let n = args.len();
+        let message = format!("`{}` takes {}, found {n}", f.name(), arity(f));
+        return failure(at, span.end.saturating_sub(span.start), message);
+    }
+    let tree = node(cx, at, ExprKind::Call(f, args), span, height)?;
+    Ok((i, tree))
+}
+
+/// Whether `f` accepts `n` arguments.
+fn arity_ok(f: Func, n: usize) -> bool {
+    match f {
+        Func::Int => n == 2 || n == 4,
+        Func::Diff => n == 2 || n == 3,
+        Func::Eval => n == 4,
+        Func::Subs => n == 3,
+        _ => n == 1,
+    }
+}
+
+/// The accepted argument counts of `f`, for messages.
+fn arity(f: Func) -> &'static str {
+    match f {
+        Func::Int => "2 or 4 arguments: int(f, x), int(f, B) or int(f, x, a, b)",
+        Func::Diff => "2 or 3 arguments: diff(f, x) or diff(f, x, n)",
+        Func::Eval => "4 arguments: eval(F, x, a, b)",
+        Func::Subs => "3 arguments: subs(f, x, v)",
+        _ => "1 argument",
+    }
+}
