@@ -24,3 +24,4 @@ pub mod lower;
 pub mod interval;
 pub mod decide;
 pub mod diag;
+pub mod check;

@@ -173,9 +173,51 @@ pub fn check(
     max_file_size: u64,
     opts: &ParseOptions,
 ) -> u8 {
-    let _ = (paths, format, verbose, timeout, max_file_size, opts);
-    eprintln!("error: check is not built yet");
-    2
+    let default = [std::path::PathBuf::from("derivations")];
+    let paths = if paths.is_empty() { &default[..] } else { paths };
+    let timeout = if timeout.is_finite() && timeout > 0.0 {
+        std::time::Duration::from_secs_f64(timeout.min(1e6))
+    } else {
+        std::time::Duration::from_secs(10)
+    };
+    let options = rigor::check::Options {
+        parse: *opts,
+        timeout,
+        max_file_size,
+    };
+    let reports = rigor::check::check_paths(paths, &options);
+    match format {
+        Format::Human => {
+            for r in &reports {
+                let text = rigor::render::human::report(r, verbose);
+                if !text.is_empty() {
+                    if r.ok() {
+                        print!("{text}");
+                    } else {
+                        eprint!("{text}");
+                    }
+                }
+            }
+            println!("{}", rigor::render::human::summary(&reports));
+        }
+        Format::Json => {
+            for r in &reports {
+                println!("{}", rigor::render::json::report(r));
+            }
+        }
+        Format::Github => {
+            for r in &reports {
+                print!("{}", rigor::render::github::report(r));
+            }
+        }
+    }
+    if reports.iter().any(|r| r.input_error) {
+        2
+    } else if reports.iter().any(|r| !r.ok()) {
+        1
+    } else {
+        0
+    }
 }
 
 /// `rigor latex` / `rigor markdown`.

@@ -3,7 +3,7 @@
 
 use super::ast::{BinOp, Chain, Expr, ExprKind, Func, Span};
 use super::chain::{chain_or_expr, ChainRules};
-use super::error::{failure, no_match, Fail, PResult, ParseOptions, SyntaxError};
+use super::error::{no_match, Fail, PError, PResult, ParseOptions, SyntaxError};
 use super::lex::{describe, end, expected, ident, is_reserved, number, token_len, ws, Cx, Ident};
 use num_rational::BigRational;
 
@@ -11,7 +11,7 @@ use num_rational::BigRational;
 ///
 /// Spans are byte offsets into `src`.
 pub fn parse_expr(src: &str, opts: &ParseOptions) -> Result<Expr, SyntaxError> {
-    let cx = Cx::new(src, opts.max_depth, false, "the end of the input");
+    let cx = Cx::new(src, src.len(), opts, false, "the end of the input");
     let parsed = expr(&cx, src, "").and_then(|(rest, e)| {
         let (rest, ()) = end(&cx, rest, "an operator or the end of the expression")?;
         Ok((rest, e))
@@ -23,7 +23,7 @@ pub fn parse_expr(src: &str, opts: &ParseOptions) -> Result<Expr, SyntaxError> {
 ///
 /// Spans are byte offsets into `src`.
 pub fn parse_chain(src: &str, opts: &ParseOptions) -> Result<Chain, SyntaxError> {
-    let cx = Cx::new(src, opts.max_depth, false, "the end of the input");
+    let cx = Cx::new(src, src.len(), opts, false, "the end of the input");
     let rules = ChainRules { after: "", by: false, where_: false };
     let parsed = chain_or_expr(&cx, src, rules).and_then(|(rest, (first, links))| {
         if links.is_empty() {
@@ -157,13 +157,20 @@ fn climb<'a>(cx: &Cx<'a>, i: &'a str, min_prec: u8, depth: usize, after: &str) -
 fn node<'a>(cx: &Cx<'a>, at: &'a str, kind: ExprKind, span: Span, below: usize) -> Result<Tree, Fail<'a>> {
     let height = below.saturating_add(1);
     if height > cx.max_height {
-        let message = format!(
-            "expression too large: more than {} operations inside one another; split it with `let`",
-            cx.max_height
-        );
-        return failure(at, token_len(at).max(1), message).map(|(_, t)| t);
+        return Err(too_large(cx, at));
     }
     Ok((Expr::new(kind, span), height))
+}
+
+/// "expression too large" at `at`.
+#[cold]
+#[inline(never)]
+fn too_large<'a>(cx: &Cx<'a>, at: &'a str) -> Fail<'a> {
+    let message = format!(
+        "expression too large: more than {} operations inside one another; split it with `let`",
+        cx.max_height
+    );
+    fail(at, token_len(at).max(1), message)
 }
 
 /// `prefix = ("-" | "−" | "+") prefix-operand | postfixed`, where the operand of a sign
@@ -184,13 +191,30 @@ fn prefix<'a>(cx: &Cx<'a>, i: &'a str, depth: usize, after: &str) -> PResult<'a,
         }
     }
     match postfixed(cx, at, depth) {
-        Err(nom::Err::Error(_)) => {
-            let what = if after.is_empty() { "expected an expression".to_string() } else { format!("expected an expression after `{after}`") };
-            let message = if at.is_empty() { what } else { format!("{what}, found {}", describe(cx, at)) };
-            failure(at, token_len(at), message)
-        }
+        Err(nom::Err::Error(_)) => Err(no_expression(cx, at, after)),
         other => other,
     }
+}
+
+/// "expected an expression after `…`" at `at`. Errors are built out of line, keeping the
+/// frames of the recursive parsers small.
+#[cold]
+#[inline(never)]
+fn no_expression<'a>(cx: &Cx<'a>, at: &'a str, after: &str) -> Fail<'a> {
+    let what = if after.is_empty() {
+        "expected an expression".to_string()
+    } else {
+        format!("expected an expression after `{after}`")
+    };
+    let message = if at.is_empty() { what } else { format!("{what}, found {}", describe(cx, at)) };
+    fail(at, token_len(at), message)
+}
+
+/// A committed failure, as a value.
+#[cold]
+#[inline(never)]
+fn fail(at: &str, len: usize, message: String) -> Fail<'_> {
+    nom::Err::Failure(PError { at, len, message: Some(message) })
 }
 
 /// `postfixed = primary ("²" | "³")*`.
@@ -242,22 +266,25 @@ fn group<'a>(cx: &Cx<'a>, open: &'a str, inner: &'a str, depth: usize) -> PResul
 /// The `)` matching the `(` at `open`: "unclosed `(`" at the end, "expected `)`" elsewhere.
 fn close<'a>(cx: &Cx<'a>, open: &'a str, i: &'a str) -> Result<&'a str, Fail<'a>> {
     let at = ws(cx, i);
-    if let Some(rest) = at.strip_prefix(')') {
-        return Ok(rest);
-    }
-    let failed = if at.is_empty() {
-        failure::<()>(open, 1, "unclosed `(`")
+    at.strip_prefix(')').ok_or_else(|| unclosed(cx, open, at))
+}
+
+/// The error when the group opened at `open` goes on with `at` instead of `)`.
+#[cold]
+#[inline(never)]
+fn unclosed<'a>(cx: &Cx<'a>, open: &'a str, at: &'a str) -> Fail<'a> {
+    if at.is_empty() {
+        fail(open, 1, "unclosed `(`".to_string())
     } else {
-        failure(at, token_len(at), format!("expected `)`, found {}", describe(cx, at)))
-    };
-    failed.map(|_| at)
+        fail(at, token_len(at), format!("expected `)`, found {}", describe(cx, at)))
+    }
 }
 
 /// `root = "√" primary`: `√(a+b)`, `√2`, `√x` are `sqrt(…)`.
 fn root<'a>(cx: &Cx<'a>, at: &'a str, rest: &'a str, depth: usize) -> PResult<'a, Tree> {
     let (_, deeper) = cx.enter(at, depth)?;
     let (rest, (arg, height)) = match primary(cx, rest, deeper) {
-        Err(nom::Err::Error(_)) => return failure(at, '√'.len_utf8(), "expected `(` after `√`: √(…)"),
+        Err(nom::Err::Error(_)) => return Err(fail(at, '√'.len_utf8(), "expected `(` after `√`: √(…)".to_string())),
         other => other?,
     };
     let span = Span::new(cx.pos(at), arg.span.end);
@@ -276,14 +303,26 @@ fn name<'a>(cx: &Cx<'a>, at: &'a str, rest: &'a str, id: Ident<'a>, depth: usize
         if touches_paren {
             return call(cx, at, f, rest, depth);
         }
-        let hint = if rest.starts_with(['^', '²', '³']) { format!("; write {0}(x)^2 for a power of {0}", id.raw) } else { String::new() };
-        return failure(at, len, format!("`{0}` needs its argument in parentheses: {0}(…){hint}", id.raw));
+        return Err(bare_function(at, rest, id.raw));
     }
     if touches_paren {
-        return failure(at, len, format!("unknown function {0}; write {0}*(x) or {0} (x) for a product", id.raw));
+        let message = format!("unknown function {0}; write {0}*(x) or {0} (x) for a product", id.raw);
+        return Err(fail(at, len, message));
     }
     let kind = if id.name == "pi" { ExprKind::Pi } else { ExprKind::Sym(id.name) };
     Ok((rest, (Expr::new(kind, cx.span(at, rest)), 1)))
+}
+
+/// "`sin` needs its argument in parentheses" for the function name `raw` at `at`.
+#[cold]
+#[inline(never)]
+fn bare_function<'a>(at: &'a str, rest: &'a str, raw: &str) -> Fail<'a> {
+    let hint = if rest.starts_with(['^', '²', '³']) {
+        format!("; write {raw}(x)^2 for a power of {raw}")
+    } else {
+        String::new()
+    };
+    fail(at, raw.len(), format!("`{raw}` needs its argument in parentheses: {raw}(…){hint}"))
 }
 
 /// `call = func "(" expr ("," expr)* ")"`, with the number of arguments checked.
@@ -303,21 +342,28 @@ fn call<'a>(cx: &Cx<'a>, at: &'a str, f: Func, open: &'a str, depth: usize) -> P
         } else if let Some(rest) = next.strip_prefix(')') {
             i = rest;
             break;
-        } else if next.is_empty() {
-            return failure(open, 1, "unclosed `(`");
         } else {
-            let message = format!("expected `,` or `)` in the arguments of `{}`, found {}", f.name(), describe(cx, next));
-            return failure(next, token_len(next), message);
+            return Err(bad_argument_list(cx, f, open, next));
         }
     }
     let span = cx.span(at, i);
     if !arity_ok(f, args.len()) {
-        let n = args.len();
-        let message = format!("`{}` takes {}, found {n}", f.name(), arity(f));
-        return failure(at, span.end.saturating_sub(span.start), message);
+        let message = format!("`{}` takes {}, found {}", f.name(), arity(f), args.len());
+        return Err(fail(at, span.end.saturating_sub(span.start), message));
     }
     let tree = node(cx, at, ExprKind::Call(f, args), span, height)?;
     Ok((i, tree))
+}
+
+/// The error when the arguments of `f`, opened at `open`, go on with `next`.
+#[cold]
+#[inline(never)]
+fn bad_argument_list<'a>(cx: &Cx<'a>, f: Func, open: &'a str, next: &'a str) -> Fail<'a> {
+    if next.is_empty() {
+        return fail(open, 1, "unclosed `(`".to_string());
+    }
+    let message = format!("expected `,` or `)` in the arguments of `{}`, found {}", f.name(), describe(cx, next));
+    fail(next, token_len(next), message)
 }
 
 /// Whether `f` accepts `n` arguments.

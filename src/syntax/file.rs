@@ -1,9 +1,8 @@
 //! Derivation files (FORMAT.md §2): lines sorted into headings, prose with `$…$` math,
 //! comments and statements with their continuation lines.
 
-use super::ast::{File, Item, ProsePart, Span};
+use super::ast::{Chain, File, Item, ProsePart, Span};
 use super::chain::{chain_or_expr, ChainRules};
-use super::ast::Chain;
 use super::error::{ParseOptions, SyntaxError};
 use super::lex::{end, ident, token_len, Cx};
 use super::stmt::{statement, KEYWORDS};
@@ -12,97 +11,109 @@ use super::stmt::{statement, KEYWORDS};
 ///
 /// Spans are byte offsets into `src`.
 pub fn parse_file(src: &str, opts: &ParseOptions) -> Result<File, SyntaxError> {
-    let stmt_cx = Cx::new(src, opts.max_depth, true, "the end of the statement");
-    let math_cx = Cx::new(src, opts.max_depth, false, "the closing `$`");
     let mut items = Vec::new();
-    // The statement being read: its first line and its last continuation line so far.
-    let mut open: Option<(&str, &str)> = None;
-    for line in lines(src) {
+    // The statement being read: the offset of its keyword and of the end of its last line so far.
+    let mut open: Option<(usize, usize)> = None;
+    for (start, line) in lines(src) {
         let content = line.trim();
         if content.is_empty() || content.starts_with('%') {
             continue;
         }
+        let line_end = start.saturating_add(line.trim_end().len());
         if line.starts_with([' ', '\t']) {
             match &mut open {
-                Some((_, last)) => *last = line,
-                None => return Err(orphan(&stmt_cx, content, items.last())),
+                Some((_, last)) => *last = line_end,
+                None => {
+                    let span = Span::new(line_end.saturating_sub(content.len()), line_end);
+                    return Err(orphan(span, items.last()));
+                }
             }
             continue;
         }
-        if let Some((first, last)) = open.take() {
-            items.push(Item::Stmt(statement(&stmt_cx, region(&stmt_cx, first, last))?));
+        if let Some(region) = open.take() {
+            items.push(Item::Stmt(stmt(src, opts, region)?));
         }
-        if line.starts_with('#') {
-            items.push(heading(&stmt_cx, content));
-        } else if let Some(text) = content.strip_prefix('>') {
-            items.push(prose(&math_cx, content, text)?);
+        if let Some(hashes) = line.strip_prefix('#') {
+            items.push(heading(hashes, Span::new(start, line_end)));
+        } else if let Some(text) = line.strip_prefix('>') {
+            items.push(prose(src, opts, start.saturating_add(1), text, Span::new(start, line_end))?);
         } else if matches!(ident(line), Ok((_, id)) if KEYWORDS.contains(&id.raw)) {
-            open = Some((line, line));
+            open = Some((start, line_end));
         } else {
             let message = "expected a statement (symbols, time, unknowns, units, body, let, given, \
                  constraint, claim, use), a heading `#`, prose `>` or a comment `%`";
-            return Err(SyntaxError::new(stmt_cx.span_len(line, token_len(line)), message));
+            let span = Span::new(start, start.saturating_add(token_len(line)));
+            return Err(SyntaxError::new(span, message));
         }
     }
-    if let Some((first, last)) = open {
-        items.push(Item::Stmt(statement(&stmt_cx, region(&stmt_cx, first, last))?));
+    if let Some(region) = open {
+        items.push(Item::Stmt(stmt(src, opts, region)?));
     }
     Ok(File { items })
 }
 
-/// The lines of `src` without their `\n` or `\r\n`, as subslices of `src`.
-fn lines(src: &str) -> impl Iterator<Item = &str> {
-    src.split_inclusive('\n').map(|l| {
+/// The lines of `src` without their `\n` or `\r\n`, each with its offset.
+fn lines(src: &str) -> impl Iterator<Item = (usize, &str)> {
+    src.split_inclusive('\n').scan(0usize, |offset, l| {
+        let start = *offset;
+        *offset = offset.saturating_add(l.len());
         let l = l.strip_suffix('\n').unwrap_or(l);
-        l.strip_suffix('\r').unwrap_or(l)
+        Some((start, l.strip_suffix('\r').unwrap_or(l)))
     })
 }
 
-/// The text from the start of line `first` to the end of line `last`.
-fn region<'a>(cx: &Cx<'a>, first: &'a str, last: &'a str) -> &'a str {
-    let (start, end) = (cx.pos(first), cx.pos(last).saturating_add(last.len()));
-    cx.base.get(start..end).unwrap_or(first)
+/// Parses the statement at `start..end` of `src`.
+fn stmt(src: &str, opts: &ParseOptions, (start, end): (usize, usize)) -> Result<super::ast::Stmt, SyntaxError> {
+    let cx = Cx::new(src, end, opts, true, "the end of the statement");
+    statement(&cx, src.get(start..end).unwrap_or(""))
 }
 
-/// The error for an indented line with no statement above it to continue.
-fn orphan(cx: &Cx<'_>, content: &str, previous: Option<&Item>) -> SyntaxError {
+/// The error for an indented line (at `span`) with no statement above it to continue.
+fn orphan(span: Span, previous: Option<&Item>) -> SyntaxError {
     let message = match previous {
         Some(Item::Heading { .. }) | Some(Item::Prose { .. }) => {
             "an indented line continues a statement, but the line above is a heading or prose; \
              start statements at the beginning of the line"
         }
-        _ => "an indented line continues a statement, but there is none above it; \
-              start statements at the beginning of the line",
-    };
-    SyntaxError::new(cx.span_len(content, content.len()), message)
-}
-
-/// `heading = "#"+ text`: the level is the number of `#`.
-fn heading(cx: &Cx<'_>, content: &str) -> Item {
-    let text = content.trim_start_matches('#');
-    let level = content.len().saturating_sub(text.len());
-    Item::Heading { level, text: text.trim().to_string(), span: cx.span_len(content, content.len()) }
-}
-
-/// `prose = ">" (text | "$" math "$")*`; `content` is the trimmed line, `text` what follows `>`.
-fn prose<'a>(cx: &Cx<'a>, content: &'a str, text: &'a str) -> Result<Item, SyntaxError> {
-    let mut parts = Vec::new();
-    let mut rest = text.trim_start();
-    while let Some((before, after)) = rest.split_once('$') {
-        if !before.is_empty() {
-            parts.push(ProsePart::Text(before.to_string()));
+        _ => {
+            "an indented line continues a statement, but there is none above it; \
+              start statements at the beginning of the line"
         }
-        let Some((math_src, next)) = after.split_once('$') else {
-            let dollar = cx.pos(after).saturating_sub(1);
-            return Err(SyntaxError::new(Span::new(dollar, dollar.saturating_add(1)), "unclosed `$`"));
+    };
+    SyntaxError::new(span, message)
+}
+
+/// `heading = "#"+ text`: the level is the number of `#`; `hashes` follows the first `#`.
+fn heading(hashes: &str, span: Span) -> Item {
+    let text = hashes.trim_start_matches('#');
+    let level = hashes.len().saturating_sub(text.len()).saturating_add(1);
+    Item::Heading { level, text: text.trim().to_string(), span }
+}
+
+/// `prose = ">" (text | "$" math "$")*`; `text` follows the `>` and starts at byte `start`.
+fn prose(src: &str, opts: &ParseOptions, start: usize, text: &str, span: Span) -> Result<Item, SyntaxError> {
+    let body = text.trim();
+    let body_start = start.saturating_add(text.len().saturating_sub(text.trim_start().len()));
+    let piece = |from: usize, to: usize| body.get(from..to).unwrap_or("");
+    let mut parts = Vec::new();
+    let mut dollars = body.match_indices('$').map(|(k, _)| k);
+    let mut text_from = 0;
+    while let Some(open) = dollars.next() {
+        if open > text_from {
+            parts.push(ProsePart::Text(piece(text_from, open).to_string()));
+        }
+        let Some(close) = dollars.next() else {
+            let at = body_start.saturating_add(open);
+            return Err(SyntaxError::new(Span::new(at, at.saturating_add(1)), "unclosed `$`"));
         };
-        parts.push(math(cx, math_src)?);
-        rest = next;
+        let cx = Cx::new(src, body_start.saturating_add(close), opts, false, "the closing `$`");
+        parts.push(math(&cx, piece(open.saturating_add(1), close))?);
+        text_from = close.saturating_add(1);
     }
-    if !rest.is_empty() {
-        parts.push(ProsePart::Text(rest.to_string()));
+    if text_from < body.len() {
+        parts.push(ProsePart::Text(piece(text_from, body.len()).to_string()));
     }
-    Ok(Item::Prose { parts, span: cx.span_len(content, content.len()) })
+    Ok(Item::Prose { parts, span })
 }
 
 /// `math = expr link*` between `$`s: a chain when it holds a relation, else an expression.

@@ -1,7 +1,7 @@
 //! Tokens of the expression language: whitespace and comments, numbers, names, punctuation, and byte offsets.
 
 use super::ast::Span;
-use super::error::{failure, no_match, Fail, PResult, SyntaxError};
+use super::error::{failure, no_match, Fail, PResult, ParseOptions, SyntaxError};
 use nom::bytes::complete::take_while;
 use nom::character::complete::{char, digit0, digit1, one_of, satisfy};
 use nom::combinator::{opt, recognize};
@@ -17,10 +17,15 @@ pub(crate) const RESERVED: [&str; 5] = ["by", "where", "with", "from", "to"];
 const MAX_EXPONENT: i64 = 10_000;
 
 /// What every parser needs to know besides its input.
+///
+/// Every parser's input is a suffix of one region of `base` (an expression, a statement,
+/// the math between two `$`), so its absolute offset is `end - input.len()`.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Cx<'a> {
     /// The text given to the top-level call; spans are byte offsets into it.
     pub base: &'a str,
+    /// The offset in `base` of the end of the region being parsed.
+    pub end: usize,
     /// The deepest nesting accepted (`ParseOptions::max_depth`).
     pub max_depth: usize,
     /// The tallest expression tree accepted (long flat sums and products).
@@ -32,17 +37,18 @@ pub(crate) struct Cx<'a> {
 }
 
 impl<'a> Cx<'a> {
-    /// A context for parsing (parts of) `base`.
-    pub fn new(base: &'a str, max_depth: usize, comments: bool, end_name: &'static str) -> Cx<'a> {
-        Cx { base, max_depth, max_height: max_depth.saturating_mul(5).max(1000), comments, end_name }
+    /// A context for parsing the region of `base` that ends at byte `end`.
+    pub fn new(base: &'a str, end: usize, opts: &ParseOptions, comments: bool, end_name: &'static str) -> Cx<'a> {
+        let max_height = opts.max_depth.saturating_mul(5).max(1000);
+        Cx { base, end, max_depth: opts.max_depth, max_height, comments, end_name }
     }
 
-    /// The byte offset of `i`, a subslice of `base`, in `base`.
+    /// The byte offset in `base` of `i`, a suffix of the region.
     pub fn pos(&self, i: &str) -> usize {
-        (i.as_ptr() as usize).wrapping_sub(self.base.as_ptr() as usize).min(self.base.len())
+        self.end.saturating_sub(i.len())
     }
 
-    /// The span from the start of `from` to the start of `to` (both subslices of `base`).
+    /// The span from the start of `from` to the start of `to` (both suffixes of the region).
     pub fn span(&self, from: &str, to: &str) -> Span {
         Span::new(self.pos(from), self.pos(to))
     }

@@ -1,0 +1,949 @@
+//! The statement walker and the link checker of FORMAT.md §3.
+
+use super::load::{Exports, ImportError, Loader};
+use super::report::{ClaimReport, FileReport, Justification, LinkReport, Status};
+use super::scope::{undeclared, Decl, Scope};
+use super::solve::{apply_steps, eliminate, unknown_name, Elimination, Fact};
+use crate::calculus::{self, Wrt};
+use crate::decide::{decide, find_counterexample, Verdict};
+use crate::diag::{line_col, Diagnostic, Severity};
+use crate::interval::Prec;
+use crate::lower::{build_body, sign_of_decl, Env, LowerError, Lowerer};
+use crate::normal::atom::{self, AtomId};
+use crate::normal::print::plain;
+use crate::normal::subst::subst_atom;
+use crate::normal::{Rat, Sign, Q};
+use crate::syntax::ast::{Assign, By, Chain, Expr, ExprKind, File, Item, RelOp, Span, StmtKind};
+use num_bigint::BigInt;
+use num_traits::{One, Signed};
+use std::collections::{HashMap, HashSet};
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// A fact in scope.
+#[derive(Clone, Debug)]
+struct Known {
+    /// The label it is cited by (`by [..]` selects on it), if any.
+    label: Option<String>,
+    fact: Fact,
+    /// Divisors met while computing it.
+    divisors: Vec<Rat>,
+}
+
+/// Walks one file.
+pub struct Checker<'l, 'o> {
+    report: FileReport,
+    dir: PathBuf,
+    loader: &'l mut Loader<'o>,
+    scope: Scope,
+    env: Env,
+    facts: Vec<Known>,
+    labels: HashMap<String, Span>,
+    exports: Exports,
+    body_coords: HashMap<String, Vec<String>>,
+}
+
+impl<'l, 'o> Checker<'l, 'o> {
+    /// A checker that will fill `report`.
+    pub fn new(report: FileReport, dir: PathBuf, loader: &'l mut Loader<'o>) -> Checker<'l, 'o> {
+        Checker {
+            report,
+            dir,
+            loader,
+            scope: Scope::default(),
+            env: Env::default(),
+            facts: Vec::new(),
+            labels: HashMap::new(),
+            exports: Exports::default(),
+            body_coords: HashMap::new(),
+        }
+    }
+
+    fn error(&mut self, code: &'static str, msg: String, span: Span, label: &str) {
+        self.report.input_error = true;
+        self.report.diagnostics.push(Diagnostic::error(code, msg, span, label));
+    }
+
+    fn line(&self, span: Span) -> usize {
+        line_col(&self.report.source, span.start).0
+    }
+
+    /// Checks every statement; returns the report and what the file exports.
+    pub fn run(mut self, file: File) -> (FileReport, Exports) {
+        for item in &file.items {
+            if let Item::Stmt(st) = item {
+                self.statement(&st.kind, st.span);
+            }
+        }
+        self.report.ast = Some(file);
+        (self.report, self.exports)
+    }
+
+    /// Reports undeclared names in `e`; true if all are declared.
+    fn declared(&mut self, e: &Expr) -> bool {
+        let coords = self.body_coords.clone();
+        let one_body = (coords.len() == 1).then(|| coords.values().next().cloned()).flatten();
+        let lookup = |n: &str| -> Option<Vec<String>> {
+            if n == "dm" && !coords.contains_key("dm") {
+                return one_body.clone();
+            }
+            coords.get(n).cloned()
+        };
+        let bad = undeclared(e, &self.scope, &lookup);
+        for (name, span) in &bad {
+            let hint = match self.scope.suggest(name) {
+                Some(s) => format!("did you mean `{s}`?"),
+                None => "declare it with `symbols`, `time` or `unknowns`".into(),
+            };
+            self.error("E0201", format!("undeclared symbol `{name}`"), *span, &hint);
+        }
+        bad.is_empty()
+    }
+
+    fn lower(&mut self, e: &Expr, divisors: &mut Vec<Rat>) -> Option<Rat> {
+        if !self.declared(e) {
+            return None;
+        }
+        let mut lw = Lowerer::new(&self.env);
+        match lw.lower(e) {
+            Ok(v) => {
+                divisors.extend(lw.divisors.into_iter().map(|d| d.value));
+                Some(v)
+            }
+            Err(err) => {
+                self.lower_error(err);
+                None
+            }
+        }
+    }
+
+    fn lower_error(&mut self, e: LowerError) {
+        let code = if e.limit { "E0901" } else { "E0101" };
+        self.error(code, e.message, e.span, "");
+    }
+
+    fn declare(&mut self, name: &str, span: Span, d: Decl) -> bool {
+        if let Some(prev) = self.scope.names.get(name) {
+            let ok = matches!((prev, &d), (Decl::Symbol, Decl::Unknown));
+            if !ok {
+                self.error(
+                    "E0203",
+                    format!("`{name}` is already declared"),
+                    span,
+                    "declared again here",
+                );
+                return false;
+            }
+            return true;
+        }
+        if name == "t" && !matches!(d, Decl::TimeVar) && self.scope.names.get("t") == Some(&Decl::TimeVar) {
+            self.error("E0203", "`t` is the time variable declared by `time`".into(), span, "");
+            return false;
+        }
+        self.scope.names.insert(name.to_string(), d);
+        true
+    }
+
+    fn new_label(&mut self, label: &Option<crate::syntax::ast::Label>) -> Option<String> {
+        let l = label.as_ref()?;
+        if let Some(prev) = self.labels.get(&l.name).copied() {
+            let line = self.line(prev);
+            self.error(
+                "E0202",
+                format!("duplicate label [{}]", l.name),
+                l.span,
+                &format!("[{}] was already used on line {line}", l.name),
+            );
+            return None;
+        }
+        self.labels.insert(l.name.clone(), l.span);
+        Some(l.name.clone())
+    }
+
+    fn fact_name(&self, label: &Option<String>, span: Span) -> String {
+        match label {
+            Some(l) => format!("[{l}]"),
+            None => format!("line {}", self.line(span)),
+        }
+    }
+
+    fn statement(&mut self, kind: &StmtKind, span: Span) {
+        match kind {
+            StmtKind::Symbols { names, sign } => {
+                for n in names {
+                    if self.declare(&n.name, n.span, Decl::Symbol) {
+                        self.env.signs.set(atom::sym(&n.name), sign_of_decl(*sign));
+                    }
+                }
+            }
+            StmtKind::Time { names } => {
+                if !self.scope.names.contains_key("t") {
+                    self.scope.names.insert("t".into(), Decl::TimeVar);
+                }
+                for n in names {
+                    if self.declare(&n.name, n.span, Decl::Time) {
+                        self.env.time.insert(n.name.clone());
+                    }
+                }
+            }
+            StmtKind::Unknowns { names } => {
+                for n in names {
+                    if self.declare(&n.name, n.span, Decl::Unknown) {
+                        self.scope.unknowns.insert(n.name.clone());
+                    }
+                }
+            }
+            StmtKind::Units { decls } => {
+                for d in decls {
+                    if !self.scope.is_declared(&d.name.name) {
+                        let hint = self.scope.suggest(&d.name.name).map_or_else(
+                            || "declare it first".to_string(),
+                            |s| format!("did you mean `{s}`?"),
+                        );
+                        self.error("E0201", format!("units for undeclared symbol `{}`", d.name.name), d.name.span, &hint);
+                    }
+                }
+            }
+            StmtKind::Body { name, def } => {
+                if !self.declare(&name.name, name.span, Decl::Body) {
+                    return;
+                }
+                let coords: Vec<String> = match def {
+                    crate::syntax::ast::BodyDef::Concrete { ranges, .. } => {
+                        ranges.iter().map(|r| r.var.name.clone()).collect()
+                    }
+                    crate::syntax::ast::BodyDef::Abstract { coords, .. } => {
+                        coords.iter().map(|c| c.name.clone()).collect()
+                    }
+                };
+                // Names inside the body statement: coordinates and their differentials are local.
+                let mut local = self.scope.clone();
+                for c in &coords {
+                    local.names.insert(c.clone(), Decl::Symbol);
+                    local.names.insert(format!("d{c}"), Decl::Symbol);
+                }
+                let exprs: Vec<&Expr> = match def {
+                    crate::syntax::ast::BodyDef::Concrete { dm, ranges } => std::iter::once(dm)
+                        .chain(ranges.iter().flat_map(|r| [&r.from, &r.to]))
+                        .collect(),
+                    crate::syntax::ast::BodyDef::Abstract { mass, .. } => vec![mass],
+                };
+                let saved = std::mem::replace(&mut self.scope, local);
+                let ok = exprs.iter().all(|e| self.declared(e));
+                self.scope = saved;
+                if !ok {
+                    return;
+                }
+                match build_body(&name.name, def, &self.env) {
+                    Ok(b) => {
+                        self.env.bodies.insert(name.name.clone(), b);
+                        self.body_coords.insert(name.name.clone(), coords);
+                    }
+                    Err(e) => self.lower_error(e),
+                }
+            }
+            StmtKind::Let { name, value } => {
+                let mut divs = Vec::new();
+                let Some(v) = self.lower(value, &mut divs) else {
+                    return;
+                };
+                if self.declare(&name.name, name.span, Decl::Def) {
+                    self.env.defs.insert(name.name.clone(), v);
+                }
+            }
+            StmtKind::Given { label, chain } | StmtKind::Constraint { label, chain } => {
+                let is_constraint = matches!(kind, StmtKind::Constraint { .. });
+                let label = self.new_label(label);
+                self.given(label, chain, span, is_constraint);
+            }
+            StmtKind::Claim { label, chain, where_ } => {
+                let label = self.new_label(label);
+                self.claim(label, chain, where_, span);
+            }
+            StmtKind::Use { labels, path, path_span, with } => self.import(labels, path, *path_span, with),
+        }
+    }
+
+    fn given(&mut self, label: Option<String>, chain: &Chain, span: Span, constraint: bool) {
+        let mut divs = Vec::new();
+        let Some(mut prev) = self.lower(&chain.first, &mut divs) else {
+            return;
+        };
+        let name = self.fact_name(&label, span);
+        for link in &chain.links {
+            let Some(rhs) = self.lower(&link.rhs, &mut divs) else {
+                return;
+            };
+            if link.op == RelOp::Eq {
+                let value = match prev.sub(&rhs) {
+                    Ok(v) => v,
+                    Err(e) => {
+                        self.error("E0101", e.to_string(), link.span, "");
+                        return;
+                    }
+                };
+                if value.is_zero() {
+                    prev = rhs;
+                    continue;
+                }
+                if !value.atoms().iter().any(|a| self.is_unknown(*a)) && self.env.signs.rat(&value).is_nonzero() {
+                    self.report.diagnostics.push(Diagnostic::error(
+                        "E0306",
+                        format!("this fact is false under the declared signs: {} = {}", plain(&prev), plain(&rhs)),
+                        link.span,
+                        "the two sides can never be equal",
+                    ));
+                    self.report.input_error = true;
+                }
+                let mut derivs = vec![value.clone()];
+                if constraint {
+                    let time = self.env.time.clone();
+                    let is_time = |b: &str| time.contains(b);
+                    let wrt = Wrt {
+                        var: atom::sym("t"),
+                        time: Some(&is_time),
+                    };
+                    let mut cur = value.clone();
+                    for _ in 0..3 {
+                        match calculus::diff(&cur, &wrt, &self.env.signs) {
+                            Ok(d) if !d.is_zero() => {
+                                derivs.push(d.clone());
+                                cur = d;
+                            }
+                            _ => break,
+                        }
+                    }
+                }
+                for (k, v) in derivs.into_iter().enumerate() {
+                    self.facts.push(Known {
+                        label: label.clone(),
+                        fact: Fact {
+                            value: v,
+                            name: format!("{name}{}", "'".repeat(k)),
+                        },
+                        divisors: divs.clone(),
+                    });
+                }
+            }
+            prev = rhs;
+        }
+    }
+
+    fn is_unknown(&self, a: AtomId) -> bool {
+        atom::sym_name(a).is_some_and(|n| self.scope.is_unknown(&n))
+    }
+
+    fn import(&mut self, labels: &[crate::syntax::ast::Label], path: &str, path_span: Span, with: &[Assign]) {
+        let dir = self.dir.clone();
+        let exports = match self.loader.import(&dir, path) {
+            Ok(e) => e,
+            Err(ImportError::Msg(m)) => {
+                self.error("E0206", m, path_span, "");
+                return;
+            }
+        };
+        let mut subs = Vec::new();
+        for a in with {
+            let mut d = Vec::new();
+            let Some(v) = self.lower(&a.value, &mut d) else {
+                return;
+            };
+            subs.push((atom::sym(&a.name.name), v));
+        }
+        for l in labels {
+            let Some(eqs) = exports.claims.get(&l.name) else {
+                self.error(
+                    "E0206",
+                    format!("\"{path}\" has no verified claim [{}]", l.name),
+                    l.span,
+                    "not found, or not verified there",
+                );
+                continue;
+            };
+            let label = self.new_label(&Some(l.clone()));
+            for eq in eqs {
+                let mut v = eq.clone();
+                for (x, val) in &subs {
+                    match subst_atom(&v, *x, val, &self.env.signs) {
+                        Ok(r) => v = r,
+                        Err(e) => {
+                            self.error("E0101", e.to_string(), l.span, "");
+                            return;
+                        }
+                    }
+                }
+                self.facts.push(Known {
+                    label: label.clone(),
+                    fact: Fact {
+                        value: v,
+                        name: format!("[{}]", l.name),
+                    },
+                    divisors: Vec::new(),
+                });
+            }
+        }
+    }
+
+    fn claim(&mut self, label: Option<String>, chain: &Chain, where_: &[Assign], span: Span) {
+        let line = self.line(span);
+        let mut claim = ClaimReport {
+            label: label.clone(),
+            span,
+            line,
+            links: Vec::new(),
+        };
+        let deadline = Instant::now() + self.loader.opts.timeout;
+        // `where`: substitutions applied to the claim and to the facts it uses.
+        let mut subs: Vec<(AtomId, Rat)> = Vec::new();
+        for a in where_ {
+            let mut d = Vec::new();
+            if !self.scope.is_declared(&a.name.name) {
+                self.declared(&Expr::new(ExprKind::Sym(a.name.name.clone()), a.name.span));
+                return self.push_error_claim(claim, chain);
+            }
+            let Some(v) = self.lower(&a.value, &mut d) else {
+                return self.push_error_claim(claim, chain);
+            };
+            subs.push((atom::sym(&a.name.name), v));
+        }
+        let mut divs = Vec::new();
+        let Some(first) = self.lower(&chain.first, &mut divs) else {
+            return self.push_error_claim(claim, chain);
+        };
+        let mut prev = first;
+        let mut prev_divs = divs;
+        let mut new_facts = Vec::new();
+        let mut all_ok = true;
+        for (i, link) in chain.links.iter().enumerate() {
+            let span = if i == 0 { chain.first.span.to(link.span) } else { link.span };
+            let mut divs = Vec::new();
+            let Some(rhs) = self.lower(&link.rhs, &mut divs) else {
+                claim.links.push(LinkReport {
+                    span,
+                    op: link.op,
+                    lhs: None,
+                    rhs: None,
+                    status: Status::Error,
+                });
+                all_ok = false;
+                break;
+            };
+            let mut all_divs = prev_divs.clone();
+            all_divs.extend(divs.iter().cloned());
+            let by = link.by.as_ref().map(|b| &b.0);
+            let status = self.check_link(&prev, &rhs, link, span, by, &subs, &all_divs, deadline);
+            let status = status.unwrap_or_else(|d| {
+                self.report.diagnostics.push(d);
+                Status::Failed
+            });
+            if status.is_verified() && link.op == RelOp::Eq {
+                if let Ok(v) = prev.sub(&rhs) {
+                    if subs.is_empty() {
+                        new_facts.push(v);
+                    }
+                }
+            }
+            all_ok &= status.is_verified();
+            claim.links.push(LinkReport {
+                span,
+                op: link.op,
+                lhs: Some(plain(&prev)),
+                rhs: Some(plain(&rhs)),
+                status,
+            });
+            prev = rhs;
+            prev_divs = divs;
+        }
+        // A verified claim becomes a fact (the chain's equalities); with `where`, it is a
+        // special case and adds nothing general.
+        let name = self.fact_name(&label, span);
+        let _ = all_ok;
+        for v in &new_facts {
+            self.facts.push(Known {
+                label: label.clone(),
+                fact: Fact {
+                    value: v.clone(),
+                    name: name.clone(),
+                },
+                divisors: Vec::new(),
+            });
+        }
+        if let Some(l) = &label {
+            if claim.verified() && !new_facts.is_empty() {
+                self.exports.claims.insert(l.clone(), new_facts);
+            }
+        }
+        self.report.claims.push(claim);
+    }
+
+    fn push_error_claim(&mut self, mut claim: ClaimReport, chain: &Chain) {
+        for (i, link) in chain.links.iter().enumerate() {
+            let span = if i == 0 { chain.first.span.to(link.span) } else { link.span };
+            claim.links.push(LinkReport {
+                span,
+                op: link.op,
+                lhs: None,
+                rhs: None,
+                status: Status::Error,
+            });
+        }
+        self.report.claims.push(claim);
+    }
+
+    /// The facts a link may use.
+    fn facts_for(&mut self, by: Option<&By>) -> Result<Vec<Known>, ()> {
+        match by {
+            Some(By::Labels(ls)) => {
+                let mut out = Vec::new();
+                let mut bad = false;
+                for l in ls {
+                    let found: Vec<Known> = self
+                        .facts
+                        .iter()
+                        .filter(|k| k.label.as_deref() == Some(l.name.as_str()))
+                        .cloned()
+                        .collect();
+                    if found.is_empty() {
+                        let known: Vec<String> = self.labels.keys().cloned().collect();
+                        let hint = if self.labels.contains_key(&l.name) {
+                            "that label names no equation that holds (a failed claim, or an inequality)".to_string()
+                        } else if known.is_empty() {
+                            "no labelled facts precede this line".into()
+                        } else {
+                            let mut sc = Scope::default();
+                            for k in &known {
+                                sc.names.insert(k.clone(), Decl::Symbol);
+                            }
+                            sc.suggest(&l.name)
+                                .map_or("no fact before this line has that label".into(), |s| format!("did you mean [{s}]?"))
+                        };
+                        self.error("E0205", format!("unknown label [{}]", l.name), l.span, &hint);
+                        bad = true;
+                    }
+                    out.extend(found);
+                }
+                if bad {
+                    Err(())
+                } else {
+                    Ok(out)
+                }
+            }
+            _ => Ok(self.facts.clone()),
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn check_link(
+        &mut self,
+        lhs: &Rat,
+        rhs: &Rat,
+        link: &crate::syntax::ast::Link,
+        span: Span,
+        by: Option<&By>,
+        subs: &[(AtomId, Rat)],
+        divisors: &[Rat],
+        deadline: Instant,
+    ) -> Result<Status, Diagnostic> {
+        let Ok(facts) = self.facts_for(by) else {
+            return Ok(Status::Error);
+        };
+        let signs = self.env.signs.clone();
+        let apply = |r: &Rat| -> Result<Rat, String> {
+            let mut v = r.clone();
+            for (x, val) in subs {
+                v = subst_atom(&v, *x, val, &signs).map_err(|e| e.to_string())?;
+            }
+            Ok(v)
+        };
+        let (a, b) = match (apply(lhs), apply(rhs)) {
+            (Ok(a), Ok(b)) => (a, b),
+            (Err(e), _) | (_, Err(e)) => {
+                return Err(Diagnostic::error("E0101", format!("the `where` substitution fails: {e}"), span, ""))
+            }
+        };
+        let mut used_facts = Vec::new();
+        let mut fact_divs = Vec::new();
+        for k in &facts {
+            if let Ok(v) = apply(&k.fact.value) {
+                used_facts.push(Fact { value: v, name: k.fact.name.clone() });
+                fact_divs.extend(k.divisors.iter().cloned());
+            }
+        }
+        let scope = self.scope.clone();
+        let is_unknown = |x: AtomId| atom::sym_name(x).is_some_and(|n| scope.is_unknown(&n));
+        let diff = a.sub(&b).map_err(|e| Diagnostic::error("E0101", e.to_string(), span, ""))?;
+        let elim = if diff.is_zero() {
+            None
+        } else {
+            Some(
+                eliminate(&diff, &used_facts, &is_unknown, &signs, Some(deadline))
+                    .map_err(|e| Diagnostic::error("E0901", e.to_string(), span, ""))?,
+            )
+        };
+        let steps = elim.as_ref().map_or(&[][..], |e| &e.steps[..]);
+        let reduce = |r: &Rat| apply_steps(r, steps, &signs);
+        let (ra, rb) = match (reduce(&a), reduce(&b)) {
+            (Ok(x), Ok(y)) => (x, y),
+            _ => (a.clone(), b.clone()),
+        };
+        let via: Vec<String> = {
+            let mut v: Vec<String> = steps.iter().map(|s| s.fact.trim_end_matches('\'').to_string()).collect();
+            v.dedup();
+            let mut seen = HashSet::new();
+            v.retain(|x| seen.insert(x.clone()));
+            v
+        };
+        let how_eq = |via: &Vec<String>| {
+            if via.is_empty() {
+                Justification::Identity
+            } else {
+                Justification::Facts(via.clone())
+            }
+        };
+        // Side conditions: divisors not shown nonzero by the signs.
+        let mut conditions: Vec<String> = Vec::new();
+        let mut all_divs: Vec<Rat> = divisors.iter().filter_map(|d| apply(d).ok()).collect();
+        if !via.is_empty() {
+            all_divs.extend(fact_divs.iter().filter_map(|d| apply(d).ok()));
+        }
+        all_divs.extend(steps.iter().filter_map(|s| s.divisor.clone()));
+        for d in &all_divs {
+            let reduced = reduce(d).unwrap_or_else(|_| d.clone());
+            if reduced.is_zero() {
+                return Err(Diagnostic::error(
+                    "E0305",
+                    format!("this step divides by {}, which is zero by the facts", plain(d)),
+                    span,
+                    "division by zero",
+                ));
+            }
+            if signs.rat(d).is_nonzero() || d.as_constant().is_some() {
+                continue;
+            }
+            let text = format!("{} != 0", plain(d));
+            if !conditions.contains(&text) {
+                conditions.push(text);
+            }
+        }
+        if let Some(e) = &elim {
+            if let Some(c) = &e.contradiction {
+                return Err(Diagnostic::error(
+                    "E0306",
+                    format!("the facts in scope contradict each other: after eliminating unknowns, {c} says a nonzero quantity is zero"),
+                    span,
+                    "checked against contradictory facts",
+                )
+                .note("nothing can be verified from contradictory facts; check the givens"));
+            }
+        }
+        let timed_out = elim.as_ref().is_some_and(|e| e.timed_out);
+        let reduced_diff = elim.as_ref().map_or_else(Rat::zero, |e| e.target.clone());
+        match link.op {
+            RelOp::Eq => {
+                if reduced_diff.is_zero() {
+                    return Ok(Status::Verified { how: how_eq(&via), side_conditions: conditions });
+                }
+                Err(self.not_equal(&a, &b, &ra, &rb, elim.as_ref(), &via, span, timed_out))
+            }
+            RelOp::Ne => match decide(&ra, &rb, &signs) {
+                Verdict::NotEqual { .. } => Ok(Status::Verified {
+                    how: Justification::Signs(via),
+                    side_conditions: conditions,
+                }),
+                Verdict::Equal => Err(Diagnostic::error("E0303", "the two sides are equal, so `!=` is false", span, "")),
+                Verdict::Undecided { why } => {
+                    let mut d = Diagnostic::error("E0302", "not verified: rigor cannot show the sides differ", span, "");
+                    d.notes.push(why);
+                    d.severity = Severity::Error;
+                    Err(d)
+                }
+            },
+            RelOp::Lt | RelOp::Le | RelOp::Gt | RelOp::Ge => {
+                let d = ra.sub(&rb).map_err(|e| Diagnostic::error("E0101", e.to_string(), span, ""))?;
+                let sign = sign_of(&d, &signs);
+                let ok = match link.op {
+                    RelOp::Lt => sign == Sign::Neg,
+                    RelOp::Le => sign.is_nonpos(),
+                    RelOp::Gt => sign == Sign::Pos,
+                    _ => sign.is_nonneg(),
+                };
+                if ok {
+                    return Ok(Status::Verified { how: Justification::Signs(via), side_conditions: conditions });
+                }
+                let mut diag = Diagnostic::error(
+                    "E0303",
+                    format!("not verified: `{}` does not follow from the declared signs", link.op),
+                    span,
+                    "",
+                )
+                .note(format!("left − right = {}", plain(&d)));
+                if let Some(e) = &elim {
+                    if !e.stuck.is_empty() {
+                        diag.notes.push(format!("the facts do not determine {}", names(&e.stuck)));
+                    }
+                }
+                if let Some(c) = violation(&ra, &rb, link.op, &signs) {
+                    diag.message = format!("`{}` is false for some values allowed by the declared signs", link.op);
+                    diag.notes.push(c);
+                    Err(diag)
+                } else {
+                    diag.notes.push(format!("its sign is {}", describe(sign)));
+                    Err(diag)
+                }
+            }
+            RelOp::Approx => self.approx(&ra, &rb, &link.rhs, span, conditions),
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn not_equal(
+        &self,
+        a: &Rat,
+        b: &Rat,
+        ra: &Rat,
+        rb: &Rat,
+        elim: Option<&Elimination>,
+        via: &[String],
+        span: Span,
+        timed_out: bool,
+    ) -> Diagnostic {
+        let using = if via.is_empty() { String::new() } else { format!(" (after using {})", via.join(", ")) };
+        let mut notes = vec![
+            format!("left side:  {}", plain(a)),
+            format!("right side: {}", plain(b)),
+        ];
+        if !via.is_empty() {
+            notes.push(format!("with the facts{using}: left {} , right {}", plain(ra), plain(rb)).replace(" ,", ","));
+        }
+        if timed_out {
+            let mut d = Diagnostic::error("E0902", "not verified: the claim ran out of its time budget (see --timeout)", span, "undecided");
+            d.notes = notes;
+            return d;
+        }
+        if let Some(e) = elim {
+            if !e.stuck.is_empty() {
+                let mut d = Diagnostic::error(
+                    "E0302",
+                    format!("not verified: nothing in scope determines {}", names(&e.stuck)),
+                    span,
+                    "a fact may be missing",
+                );
+                notes.push(format!("after eliminating what the facts give, left − right = {}", plain(&e.target)));
+                notes.push(format!("a fact about {} was needed but never given (or `by [..]` left it out)", names(&e.stuck)));
+                d.notes = notes;
+                return d;
+            }
+        }
+        match decide(ra, rb, &self.env.signs) {
+            Verdict::NotEqual { diagnosis, counterexample, .. } => {
+                let label = diagnosis.clone().unwrap_or_else(|| "the two sides differ".into());
+                let mut d = Diagnostic::error("E0301", format!("this step does not hold{using}"), span, &label);
+                if let Some(c) = counterexample {
+                    if c.values.is_empty() {
+                        notes.push(format!("the left side is {}, the right side {}", c.lhs, c.rhs));
+                    } else {
+                        notes.push(format!("counterexample: at {} the left side is {} and the right side {}", c.assignment(), c.lhs, c.rhs));
+                    }
+                }
+                d.notes = notes;
+                d
+            }
+            Verdict::Undecided { why } | Verdict::NotEqual { diagnosis: Some(why), .. } => {
+                let mut d = Diagnostic::error("E0302", format!("not verified{using}: rigor can neither prove nor refute this step"), span, "undecided");
+                notes.push(why);
+                d.notes = notes;
+                d
+            }
+            Verdict::NotEqual { .. } | Verdict::Equal => {
+                let mut d = Diagnostic::error("E0302", "not verified", span, "");
+                d.notes = notes;
+                d
+            }
+        }
+    }
+
+    fn approx(&self, a: &Rat, b: &Rat, rhs: &Expr, span: Span, conditions: Vec<String>) -> Result<Status, Diagnostic> {
+        let Some((c, ulp)) = literal_precision(rhs, &self.report.source) else {
+            return Err(Diagnostic::error(
+                "E0304",
+                "`~=` needs a decimal number on its right side (its precision says how close)",
+                span,
+                "",
+            ));
+        };
+        let Ok(ratio) = a.div(b) else {
+            return Err(Diagnostic::error("E0304", "the right side of `~=` is zero", span, ""));
+        };
+        // A/B must be a number; then A ≈ B when |c·A/B − c| ≤ ulp/2.
+        let mut sy = Vec::new();
+        crate::decide::symbols_in(&ratio, &mut sy);
+        if !sy.is_empty() {
+            return Err(Diagnostic::error(
+                "E0304",
+                format!("`~=` is not verified: the ratio of the sides, {}, is not a number", plain(&ratio)),
+                span,
+                "",
+            ));
+        }
+        let point = HashMap::new();
+        let mut ev = crate::decide::Evaluator::new(&point);
+        ev.prec = Prec::new(128);
+        let half = &ulp / Q::from_integer(BigInt::from(2));
+        let err = ev.rat(&ratio).and_then(|r| {
+            let ci = crate::interval::Interval::point(c.clone());
+            r.mul(&ci, ev.prec)?.sub(&ci, ev.prec)?.abs()
+        });
+        match err {
+            Some(e) if e.hi() <= &half => Ok(Status::Verified { how: Justification::Approx, side_conditions: conditions }),
+            Some(e) if e.lo() > &half => Err(Diagnostic::error(
+                "E0304",
+                format!("`~=` does not hold at the precision written: the exact ratio is {}", plain(&ratio)),
+                span,
+                "not this close",
+            )
+            .note(format!(
+                "left / right ≈ {}, so the left side is ≈ {} × (right side / {}), which does not round to {}",
+                ev.rat(&ratio).map_or_else(|| "?".into(), |r| r.to_decimal_string(6)),
+                ev.rat(&ratio)
+                    .and_then(|r| r.mul(&crate::interval::Interval::point(c.clone()), ev.prec))
+                    .map_or_else(|| "?".into(), |r| r.to_decimal_string(6)),
+                show(&c),
+                show(&c)
+            ))),
+            _ => Err(Diagnostic::error(
+                "E0302",
+                "`~=` is not verified: rigor could not bound the ratio precisely enough",
+                span,
+                "undecided",
+            )),
+        }
+    }
+}
+
+fn show(q: &Q) -> String {
+    if q.denom().is_one() {
+        q.numer().to_string()
+    } else {
+        // Decimal form of a terminating fraction, else p/q.
+        let mut d = q.denom().clone();
+        let mut k = 0usize;
+        let two = BigInt::from(2);
+        let five = BigInt::from(5);
+        while (&d % &two) == BigInt::from(0) || (&d % &five) == BigInt::from(0) {
+            if (&d % &two) == BigInt::from(0) {
+                d /= &two;
+            } else {
+                d /= &five;
+            }
+            k += 1;
+            if k > 60 {
+                break;
+            }
+        }
+        if d.is_one() {
+            let scaled = q * Q::from_integer(BigInt::from(10).pow(k as u32));
+            let n = scaled.to_integer();
+            let s = n.abs().to_string();
+            let s = format!("{:0>width$}", s, width = k + 1);
+            let (i, f) = s.split_at(s.len() - k);
+            let f = f.trim_end_matches('0');
+            let sign = if q.is_negative() { "-" } else { "" };
+            if f.is_empty() {
+                format!("{sign}{i}")
+            } else {
+                format!("{sign}{i}.{f}")
+            }
+        } else {
+            format!("{}/{}", q.numer(), q.denom())
+        }
+    }
+}
+
+fn names(ids: &[AtomId]) -> String {
+    ids.iter().map(|a| unknown_name(*a)).collect::<Vec<_>>().join(", ")
+}
+
+fn describe(s: Sign) -> &'static str {
+    match s {
+        Sign::Zero => "zero",
+        Sign::Pos => "positive",
+        Sign::Neg => "negative",
+        Sign::NonNeg => "nonnegative (it may be zero)",
+        Sign::NonPos => "nonpositive (it may be zero)",
+        Sign::NonZero => "nonzero but of unknown sign",
+        Sign::Unknown => "not determined by the declared signs",
+    }
+}
+
+/// The sign of `d`: term-wise from the declared signs, or for constants from a rigorous enclosure.
+fn sign_of(d: &Rat, signs: &crate::normal::Assumptions) -> Sign {
+    let s = signs.rat(d);
+    if s != Sign::Unknown && s != Sign::NonZero {
+        return s;
+    }
+    let mut sy = Vec::new();
+    crate::decide::symbols_in(d, &mut sy);
+    if sy.is_empty() {
+        let point = HashMap::new();
+        let mut ev = crate::decide::Evaluator::new(&point);
+        if let Some(v) = ev.rat(d) {
+            if v.is_positive() {
+                return Sign::Pos;
+            }
+            if v.is_negative() {
+                return Sign::Neg;
+            }
+        }
+    }
+    s
+}
+
+/// A checked point where `a op b` is false, described.
+fn violation(a: &Rat, b: &Rat, op: RelOp, signs: &crate::normal::Assumptions) -> Option<String> {
+    let mut sy = Vec::new();
+    crate::decide::symbols_in(a, &mut sy);
+    crate::decide::symbols_in(b, &mut sy);
+    // Reuse the counterexample search on `a` against `b`, then test the relation there.
+    let c = find_counterexample(a, b, signs)?;
+    let point: HashMap<AtomId, Q> = c.values.iter().map(|(n, q)| (atom::sym(n), q.clone())).collect();
+    let mut ev = crate::decide::Evaluator::new(&point);
+    let d = ev.rat(&a.sub(b).ok()?)?;
+    let false_there = match op {
+        RelOp::Lt => !d.is_negative() && (d.is_positive() || d.lo() >= &Q::from_integer(0.into())),
+        RelOp::Le => d.is_positive(),
+        RelOp::Gt => d.is_negative() || d.hi() <= &Q::from_integer(0.into()),
+        _ => d.is_negative(),
+    };
+    false_there.then(|| format!("at {} the left side is {} and the right side {}", c.assignment(), c.lhs, c.rhs))
+}
+
+/// The first decimal literal in `e` and the unit of its last written digit.
+fn literal_precision(e: &Expr, src: &str) -> Option<(Q, Q)> {
+    match &e.kind {
+        ExprKind::Num(q) => {
+            let text = src.get(e.span.start..e.span.end)?;
+            Some((q.clone(), ulp_of(text)?))
+        }
+        ExprKind::Neg(a) => literal_precision(a, src).map(|(q, u)| (-q, u)),
+        ExprKind::Bin(_, a, b) => literal_precision(a, src).or_else(|| literal_precision(b, src)),
+        ExprKind::Call(_, args) => args.iter().find_map(|a| literal_precision(a, src)),
+        _ => None,
+    }
+}
+
+/// `0.71` → 1/100, `1.5e-3` → 1/10000, `3` → 1.
+fn ulp_of(text: &str) -> Option<Q> {
+    let t = text.trim();
+    let (mant, exp) = match t.find(['e', 'E']) {
+        Some(i) => (&t[..i], t[i + 1..].parse::<i32>().ok()?),
+        None => (t, 0),
+    };
+    let decimals = mant.split_once('.').map_or(0, |(_, f)| f.len()) as i32;
+    let k = decimals - exp;
+    let ten = BigInt::from(10);
+    Some(if k >= 0 {
+        Q::new(BigInt::one(), ten.pow(k as u32))
+    } else {
+        Q::from_integer(ten.pow((-k) as u32))
+    })
+}

@@ -1,0 +1,134 @@
+//! What the checker found, as data: per file, per statement and per link.
+//! Renderers read this; nothing here decides truth.
+
+use crate::diag::Diagnostic;
+use crate::syntax::ast::{File, RelOp, Span};
+
+/// How a verified link was justified.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Justification {
+    /// `A − B` normalises to zero.
+    Identity,
+    /// Zero after eliminating unknowns with these facts (labels, or `line N` for unlabelled ones).
+    Facts(Vec<String>),
+    /// An inequality whose sign follows from the declared signs (after any elimination).
+    Signs(Vec<String>),
+    /// `~=`: the ratio rounds to 1 at the precision written.
+    Approx,
+}
+
+/// The outcome of one link.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Status {
+    /// Verified, with its justification and the side conditions assumed.
+    Verified {
+        /// Why it holds.
+        how: Justification,
+        /// Divisors assumed nonzero (`cos(beta) != 0`), as text.
+        side_conditions: Vec<String>,
+    },
+    /// Shown false (or its check failed); the diagnostic explains.
+    Failed,
+    /// Neither verified nor refuted; the diagnostic explains.
+    Undecided,
+    /// Not checked because the statement could not be read (an input error).
+    Error,
+}
+
+impl Status {
+    /// Whether verified.
+    pub fn is_verified(&self) -> bool {
+        matches!(self, Status::Verified { .. })
+    }
+}
+
+/// One checked link `prev op rhs`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LinkReport {
+    /// The span of the link (for the first link of a claim: from the claim's lhs to the rhs).
+    pub span: Span,
+    /// The relation.
+    pub op: RelOp,
+    /// Normal form of the left side (plain text), when it could be computed.
+    pub lhs: Option<String>,
+    /// Normal form of the right side.
+    pub rhs: Option<String>,
+    /// The outcome.
+    pub status: Status,
+}
+
+/// One `claim` statement.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ClaimReport {
+    /// Its label, if any.
+    pub label: Option<String>,
+    /// The statement's span.
+    pub span: Span,
+    /// 1-based line of the statement.
+    pub line: usize,
+    /// Each link in order.
+    pub links: Vec<LinkReport>,
+}
+
+impl ClaimReport {
+    /// Whether every link verified.
+    pub fn verified(&self) -> bool {
+        self.links.iter().all(|l| l.status.is_verified())
+    }
+}
+
+/// Everything about one file.
+#[derive(Clone, Debug, Default)]
+pub struct FileReport {
+    /// The path as given.
+    pub path: String,
+    /// The text (empty if it could not be read).
+    pub source: String,
+    /// The parsed file, if it parsed.
+    pub ast: Option<File>,
+    /// Every claim, in order.
+    pub claims: Vec<ClaimReport>,
+    /// Every diagnostic, in source order.
+    pub diagnostics: Vec<Diagnostic>,
+    /// Whether the input was bad (syntax, undeclared symbol, unreadable file…): exit status 2.
+    pub input_error: bool,
+}
+
+impl FileReport {
+    /// Number of links checked.
+    pub fn links(&self) -> usize {
+        self.claims.iter().map(|c| c.links.len()).sum()
+    }
+
+    /// Number of verified links.
+    pub fn verified(&self) -> usize {
+        self.claims
+            .iter()
+            .flat_map(|c| &c.links)
+            .filter(|l| l.status.is_verified())
+            .count()
+    }
+
+    /// Number of links that failed or stayed undecided.
+    pub fn failed(&self) -> usize {
+        self.claims
+            .iter()
+            .flat_map(|c| &c.links)
+            .filter(|l| matches!(l.status, Status::Failed | Status::Undecided))
+            .count()
+    }
+
+    /// Whether every link verified and there was no error.
+    pub fn ok(&self) -> bool {
+        !self.input_error && self.failed() == 0
+    }
+
+    /// The status of the link whose span is `span`, if checked.
+    pub fn link_status(&self, span: Span) -> Option<&Status> {
+        self.claims
+            .iter()
+            .flat_map(|c| &c.links)
+            .find(|l| l.span == span)
+            .map(|l| &l.status)
+    }
+}

@@ -1,0 +1,212 @@
+//! Eliminating unknowns with facts: sequential linear elimination (which is Gaussian
+//! elimination over the field of rational functions in the parameters) and principal
+//! roots of positive unknowns that appear only as `u^n`.
+
+use crate::normal::atom::{self, AtomId};
+use crate::normal::subst::{atom_depends_on, subst_atom};
+use crate::normal::{func, Assumptions, NormError, Poly, Rat, Sign, Q};
+use std::time::Instant;
+
+/// A fact `value = 0`, with the name it is cited by.
+#[derive(Clone, Debug)]
+pub struct Fact {
+    /// The left side minus the right side.
+    pub value: Rat,
+    /// `[Fx]` or `line 12`.
+    pub name: String,
+}
+
+/// One solved unknown.
+#[derive(Clone, Debug)]
+pub struct Step {
+    /// The unknown.
+    pub unknown: AtomId,
+    /// Its value in terms of the remaining symbols.
+    pub value: Rat,
+    /// The fact it came from.
+    pub fact: String,
+    /// The divisor of the solution, when not known nonzero.
+    pub divisor: Option<Rat>,
+}
+
+/// The outcome of eliminating unknowns from a target.
+#[derive(Clone, Debug)]
+pub struct Elimination {
+    /// The target after substitution.
+    pub target: Rat,
+    /// The steps taken, in order.
+    pub steps: Vec<Step>,
+    /// A fact that reduced to a false statement (facts contradict), by name.
+    pub contradiction: Option<String>,
+    /// Unknowns left in the target that no fact determined.
+    pub stuck: Vec<AtomId>,
+    /// Whether the time budget ran out.
+    pub timed_out: bool,
+}
+
+/// Eliminates the unknowns in `target` using `facts`; then, if the target is still not
+/// zero, any symbol that a remaining fact determines (a given such as `g = 9.81`).
+pub fn eliminate(
+    target: &Rat,
+    facts: &[Fact],
+    is_unknown: &dyn Fn(AtomId) -> bool,
+    signs: &Assumptions,
+    deadline: Option<Instant>,
+) -> Result<Elimination, NormError> {
+    let first = eliminate_with(target, facts, is_unknown, signs, deadline)?;
+    if first.target.is_zero() || first.contradiction.is_some() || first.timed_out {
+        return Ok(first);
+    }
+    let used: Vec<&str> = first.steps.iter().map(|s| s.fact.as_str()).collect();
+    let mut rest: Vec<Fact> = Vec::new();
+    for f in facts.iter().filter(|f| !used.contains(&f.name.as_str())) {
+        let v = match apply_steps(&f.value, &first.steps, signs) {
+            Ok(v) => v,
+            Err(_) => continue,
+        };
+        if !v.is_zero() {
+            rest.push(Fact { value: v, name: f.name.clone() });
+        }
+    }
+    let any_symbol = |a: AtomId| atom::sym_name(a).is_some();
+    let second = eliminate_with(&first.target, &rest, &any_symbol, signs, deadline)?;
+    if !second.target.is_zero() {
+        return Ok(first);
+    }
+    let mut steps = first.steps;
+    steps.extend(second.steps);
+    Ok(Elimination { steps, ..second })
+}
+
+fn eliminate_with(
+    target: &Rat,
+    facts: &[Fact],
+    is_unknown: &dyn Fn(AtomId) -> bool,
+    signs: &Assumptions,
+    deadline: Option<Instant>,
+) -> Result<Elimination, NormError> {
+    let mut target = target.clone();
+    let mut facts: Vec<Fact> = facts.to_vec();
+    let mut steps = Vec::new();
+    let mut contradiction = None;
+    let mut timed_out = false;
+    loop {
+        if deadline.is_some_and(|d| Instant::now() > d) {
+            timed_out = true;
+            break;
+        }
+        let unknowns: Vec<AtomId> = target.atoms().into_iter().filter(|a| is_unknown(*a)).collect();
+        if unknowns.is_empty() {
+            break;
+        }
+        // The best (fact, unknown) pair: the fact with fewest unknowns that determines one.
+        let mut best: Option<(usize, usize, AtomId, Solution)> = None;
+        for u in &unknowns {
+            for (i, f) in facts.iter().enumerate() {
+                let n_unknowns = f.value.atoms().iter().filter(|a| is_unknown(**a)).count();
+                if best.as_ref().is_some_and(|b| b.0 <= n_unknowns) {
+                    continue;
+                }
+                if let Some(sol) = solve_for(&f.value, *u, signs)? {
+                    best = Some((n_unknowns, i, *u, sol));
+                }
+            }
+        }
+        let Some((_, i, u, sol)) = best else {
+            break;
+        };
+        let fact = facts.remove(i);
+        target = subst_atom(&target, u, &sol.value, signs)?;
+        let mut kept = Vec::with_capacity(facts.len());
+        for f in facts {
+            let v = match subst_atom(&f.value, u, &sol.value, signs) {
+                Ok(v) => v,
+                // The substitution makes this fact undefined: it cannot be used further.
+                Err(NormError::DivisionByZero) => continue,
+                Err(e) => return Err(e),
+            };
+            if v.is_zero() {
+                continue;
+            }
+            if contradiction.is_none() && !v.atoms().iter().any(|a| is_unknown(*a)) && signs.rat(&v).is_nonzero() {
+                contradiction = Some(f.name.clone());
+            }
+            kept.push(Fact {
+                value: v,
+                name: f.name,
+            });
+        }
+        facts = kept;
+        steps.push(Step {
+            unknown: u,
+            value: sol.value,
+            fact: fact.name,
+            divisor: sol.divisor,
+        });
+    }
+    let stuck = target.atoms().into_iter().filter(|a| is_unknown(*a)).collect();
+    Ok(Elimination {
+        target,
+        steps,
+        contradiction,
+        stuck,
+        timed_out,
+    })
+}
+
+struct Solution {
+    value: Rat,
+    divisor: Option<Rat>,
+}
+
+/// Solves `f = 0` for `u` when `f` is linear in `u`, or (for a positive unknown)
+/// involves `u` only as `u^n`.
+fn solve_for(f: &Rat, u: AtomId, signs: &Assumptions) -> Result<Option<Solution>, NormError> {
+    let n = f.num();
+    if !n.contains(u) {
+        return Ok(None);
+    }
+    // u must not hide inside other atoms (sin(u), sqrt(u)…) or in the denominator.
+    if f.den().contains(u) || n.atoms().iter().any(|a| *a != u && atom_depends_on(*a, u)) {
+        return Ok(None);
+    }
+    let coeffs = n.coeffs_in(u);
+    let deg = n.degree_in(u);
+    let (lead, rest): (Poly, Poly) = match coeffs.as_slice() {
+        [(0, c0), (e, c1)] if *e == deg => (c1.clone(), c0.clone()),
+        [(e, c1)] if *e == deg => (c1.clone(), Poly::zero()),
+        _ => return Ok(None),
+    };
+    if lead.atoms().contains(&u) {
+        return Ok(None);
+    }
+    let lead = Rat::poly(lead)?;
+    let rest = Rat::poly(rest)?;
+    let divisor = (!signs.rat(&lead).is_nonzero() && lead.as_constant().is_none()).then(|| lead.clone());
+    let base = rest.neg().div(&lead)?;
+    let value = if deg == 1 {
+        base
+    } else {
+        // u^n = base with u > 0 (or ≥ 0): the principal root.
+        match signs.declared(u) {
+            Sign::Pos | Sign::NonNeg => func::root(&base, deg, signs)?,
+            _ => return Ok(None),
+        }
+    };
+    Ok(Some(Solution { value, divisor }))
+}
+
+/// Applies solved steps, in order, to another expression (e.g. a divisor).
+pub fn apply_steps(r: &Rat, steps: &[Step], signs: &Assumptions) -> Result<Rat, NormError> {
+    let mut cur = r.clone();
+    for s in steps {
+        cur = subst_atom(&cur, s.unknown, &s.value, signs)?;
+    }
+    Ok(cur)
+}
+
+/// `q` as text (helper for messages).
+pub fn unknown_name(a: AtomId) -> String {
+    atom::sym_name(a).unwrap_or_else(|| "?".into())
+}
+

@@ -1,0 +1,8 @@
+//! rigor's integration tests: one binary, one module per feature.
+
+mod calculus;
+mod check;
+mod cli;
+mod equiv;
+mod normal;
+mod props;
