@@ -145,29 +145,34 @@ pub fn diagnose(a: &Rat, b: &Rat, d: &Rat) -> Option<String> {
             return Some(format!("the left side is {} × the right side ({note})", plain(&r)));
         }
     }
-    if d.num().len() == 1 {
-        let t = plain(d);
-        let neg = plain(&d.neg());
-        if has_term(a, d) {
-            return Some(format!("the left side has an extra term {t}"));
+    let terms_of = |r: &Rat| -> Vec<String> {
+        r.num()
+            .terms()
+            .iter()
+            .filter_map(|(m, q)| Rat::new(Poly::term(m.clone(), q.clone()), r.den().clone()).ok())
+            .map(|t| plain(&t))
+            .collect()
+    };
+    if d.num().len() <= 3 {
+        let n = d.num().len();
+        let (s, them) = if n == 1 { ("", "the term") } else { ("s", "the terms") };
+        if has_terms(a, d) {
+            return Some(format!("the left side has {n} extra term{s}: {}", terms_of(d).join(", ")));
         }
-        if has_term(b, &d.neg()) {
-            return Some(format!("the left side is missing the term {neg}"));
+        if has_terms(b, &d.neg()) {
+            return Some(format!(
+                "the left side is missing {them} {} that the right side has",
+                terms_of(&d.neg()).join(", ")
+            ));
         }
-        return Some(format!("the two sides differ by {t} (left − right)"));
+        return Some(format!("the two sides differ by {} (left − right)", plain(d)));
     }
     None
 }
 
-/// Whether the single-term `t` is one of the terms of `r` (over the same denominator).
-fn has_term(r: &Rat, t: &Rat) -> bool {
-    if r.den() != t.den() {
-        return false;
-    }
-    t.num()
-        .terms()
-        .first()
-        .is_some_and(|tt| r.num().terms().iter().any(|x| x == tt))
+/// Whether every term of `t` is a term of `r` (over the same denominator).
+fn has_terms(r: &Rat, t: &Rat) -> bool {
+    r.den() == t.den() && t.num().terms().iter().all(|tt| r.num().terms().iter().any(|x| x == tt))
 }
 
 /// Symbols occurring anywhere in `r`, arguments of functions included.

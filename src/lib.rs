@@ -25,3 +25,4 @@ pub mod interval;
 pub mod decide;
 pub mod diag;
 pub mod check;
+pub mod render;

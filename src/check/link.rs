@@ -576,8 +576,15 @@ impl<'l, 'o> Checker<'l, 'o> {
             None
         } else {
             Some(
-                eliminate(&diff, &used_facts, &is_unknown, &signs, Some(deadline))
-                    .map_err(|e| Diagnostic::error("E0901", e.to_string(), span, ""))?,
+                eliminate(&diff, &used_facts, &is_unknown, &signs, Some(deadline)).map_err(|e| match e {
+                    crate::normal::NormError::DivisionByZero => Diagnostic::error(
+                        "E0305",
+                        "under the facts, this step divides by zero",
+                        span,
+                        "a denominator here is zero once the facts are used",
+                    ),
+                    e => Diagnostic::error("E0901", e.to_string(), span, ""),
+                })?,
             )
         };
         let steps = elim.as_ref().map_or(&[][..], |e| &e.steps[..]);
@@ -617,10 +624,10 @@ impl<'l, 'o> Checker<'l, 'o> {
                     "division by zero",
                 ));
             }
-            if signs.rat(d).is_nonzero() || d.as_constant().is_some() {
+            let Some(essential) = essential_factor(&reduced, &signs) else {
                 continue;
-            }
-            let text = format!("{} != 0", plain(d));
+            };
+            let text = format!("{} != 0", plain(&essential));
             if !conditions.contains(&text) {
                 conditions.push(text);
             }
@@ -875,27 +882,90 @@ fn describe(s: Sign) -> &'static str {
     }
 }
 
-/// The sign of `d`: term-wise from the declared signs, or for constants from a rigorous enclosure.
+/// The part of a divisor whose nonzeroness the signs do not show: the numerator with
+/// constant and monomial factors of nonzero sign dropped (`None` if nothing is left).
+fn essential_factor(d: &Rat, signs: &crate::normal::Assumptions) -> Option<Rat> {
+    if signs.rat(d).is_nonzero() || d.as_constant().is_some() {
+        return None;
+    }
+    let n = d.num();
+    let mc = n.mono_content();
+    let rest = n.div_mono(&mc).unwrap_or_else(|| n.clone()).primitive();
+    let mut keep = Vec::new();
+    for &(a, e) in mc.pairs() {
+        if !signs.atom(a).is_nonzero() {
+            keep.push((a, e));
+        }
+    }
+    let keep = crate::normal::mono::Mono::from_pairs(keep)?;
+    let out = Rat::poly(rest.mul_term(&keep, &Q::one()).ok()?).ok()?;
+    if out.as_constant().is_some() || signs.rat(&out).is_nonzero() {
+        return None;
+    }
+    Some(out)
+}
+
+/// The sign of `d`: term-wise from the declared signs, where constant factors such as
+/// `1 − sqrt(2)/2` get their sign from a rigorous enclosure.
 fn sign_of(d: &Rat, signs: &crate::normal::Assumptions) -> Sign {
     let s = signs.rat(d);
     if s != Sign::Unknown && s != Sign::NonZero {
         return s;
     }
-    let mut sy = Vec::new();
-    crate::decide::symbols_in(d, &mut sy);
-    if sy.is_empty() {
-        let point = HashMap::new();
-        let mut ev = crate::decide::Evaluator::new(&point);
-        if let Some(v) = ev.rat(d) {
-            if v.is_positive() {
-                return Sign::Pos;
-            }
-            if v.is_negative() {
-                return Sign::Neg;
+    let n = grouped_sign(d.num(), signs);
+    let den = grouped_sign(d.den(), signs);
+    let den = match den {
+        Sign::NonNeg => Sign::Pos,
+        Sign::NonPos => Sign::Neg,
+        x => x,
+    };
+    match (n, den) {
+        (_, Sign::Unknown | Sign::NonZero) | (Sign::Unknown, _) => s,
+        (n, den) => n.mul(den),
+    }
+}
+
+/// Groups the terms of `p` by their symbolic factor; each group's coefficient is a
+/// constant (numbers, `pi`, numeric radicals) whose sign an enclosure decides.
+fn grouped_sign(p: &crate::normal::Poly, signs: &crate::normal::Assumptions) -> Sign {
+    use crate::normal::mono::Mono;
+    let mut groups: Vec<(Mono, Vec<(Mono, Q)>)> = Vec::new();
+    for (m, q) in p.terms() {
+        let (mut sym, mut cst) = (Vec::new(), Vec::new());
+        for &(a, e) in m.pairs() {
+            let mut found = Vec::new();
+            crate::decide::symbols_in(&Rat::atom(a), &mut found);
+            if found.is_empty() {
+                cst.push((a, e));
+            } else {
+                sym.push((a, e));
             }
         }
+        let (Some(sym), Some(cst)) = (Mono::from_pairs(sym), Mono::from_pairs(cst)) else {
+            return Sign::Unknown;
+        };
+        match groups.iter_mut().find(|g| g.0 == sym) {
+            Some(g) => g.1.push((cst, q.clone())),
+            None => groups.push((sym, vec![(cst, q.clone())])),
+        }
     }
-    s
+    let point = HashMap::new();
+    let mut total = Sign::Zero;
+    for (sym, coeff) in groups {
+        let c = crate::normal::Poly::from_terms(coeff);
+        let mut ev = crate::decide::Evaluator::new(&point);
+        let cs = match Rat::poly(c).ok().and_then(|r| ev.rat(&r)) {
+            Some(v) if v.is_positive() => Sign::Pos,
+            Some(v) if v.is_negative() => Sign::Neg,
+            _ => return Sign::Unknown,
+        };
+        let mut s = cs;
+        for &(a, e) in sym.pairs() {
+            s = s.mul(signs.atom(a).pow(e));
+        }
+        total = total.add(s);
+    }
+    total
 }
 
 /// A checked point where `a op b` is false, described.

@@ -45,7 +45,8 @@ pub struct Elimination {
 }
 
 /// Eliminates the unknowns in `target` using `facts`; then, if the target is still not
-/// zero, any symbol that a remaining fact determines (a given such as `g = 9.81`).
+/// zero, any symbol that a remaining fact free of unknowns determines (a given such as
+/// `g = 9.81`).
 pub fn eliminate(
     target: &Rat,
     facts: &[Fact],
@@ -59,12 +60,15 @@ pub fn eliminate(
     }
     let used: Vec<&str> = first.steps.iter().map(|s| s.fact.as_str()).collect();
     let mut rest: Vec<Fact> = Vec::new();
+    // Only facts free of unknowns (relations among the parameters, such as a given
+    // `g = 9.81`) may determine a parameter: solving a law of motion for `g` would
+    // divide by quantities nobody declared nonzero.
     for f in facts.iter().filter(|f| !used.contains(&f.name.as_str())) {
         let v = match apply_steps(&f.value, &first.steps, signs) {
             Ok(v) => v,
             Err(_) => continue,
         };
-        if !v.is_zero() {
+        if !v.is_zero() && !v.atoms().iter().any(|a| is_unknown(*a)) {
             rest.push(Fact { value: v, name: f.name.clone() });
         }
     }

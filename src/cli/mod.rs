@@ -189,7 +189,7 @@ pub fn check(
     match format {
         Format::Human => {
             for r in &reports {
-                let text = rigor::render::human::report(r, verbose);
+                let text = tmp_human(r, verbose);
                 if !text.is_empty() {
                     if r.ok() {
                         print!("{text}");
@@ -198,16 +198,16 @@ pub fn check(
                     }
                 }
             }
-            println!("{}", rigor::render::human::summary(&reports));
+            println!("{}", "(summary pending)");
         }
         Format::Json => {
             for r in &reports {
-                println!("{}", rigor::render::json::report(r));
+                let _ = r;
             }
         }
         Format::Github => {
             for r in &reports {
-                print!("{}", rigor::render::github::report(r));
+                let _ = r;
             }
         }
     }
@@ -225,4 +225,8 @@ pub fn document(file: &Path, out: Option<&Path>, latex: bool, opts: &ParseOption
     let _ = (file, out, latex, opts);
     eprintln!("error: documents are not built yet");
     2
+}
+
+fn tmp_human(r: &rigor::check::FileReport, _verbose: bool) -> String {
+    r.diagnostics.iter().map(|d| diag::render(d, &r.path, &r.source)).collect()
 }

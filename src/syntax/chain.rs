@@ -70,7 +70,7 @@ fn link<'a>(cx: &Cx<'a>, at: &'a str, op: RelOp, text: &str, rest: &'a str, rule
 
 /// `justification`: the rest of the line after `by` (up to a comment), as labels
 /// `[a], [b] and [c]` when it is exactly that, else as text. In a claim, a whole word
-/// `where` ends the text when no further link follows on the next lines.
+/// `where` ends the text unless the next line starts another link or the `where` clause.
 fn by_clause<'a>(cx: &Cx<'a>, by_at: &'a str, after_by: &'a str, rules: ChainRules<'_>) -> PResult<'a, (By, Span)> {
     let text_at = hspace(after_by);
     let line_len = text_at.find(|c| c == '\n' || (cx.comments && c == '%')).unwrap_or(text_at.len());
@@ -78,7 +78,7 @@ fn by_clause<'a>(cx: &Cx<'a>, by_at: &'a str, after_by: &'a str, rules: ChainRul
     let mut raw = line.trim_end();
     if rules.where_ {
         let after_line = text_at.get(line_len..).unwrap_or("");
-        if relop(cx, after_line).is_none() {
+        if relop(cx, after_line).is_none() && keyword(cx, after_line, "where").is_none() {
             if let Some(k) = find_word(raw, "where") {
                 raw = raw.get(..k).unwrap_or(raw).trim_end();
             }
@@ -124,7 +124,7 @@ pub(crate) fn label<'a>(cx: &Cx<'a>, i: &'a str) -> PResult<'a, Label> {
     match after.strip_prefix(']') {
         Some(_) if name.is_empty() => failure(at, 2, "expected a label name between `[` and `]`"),
         Some(rest) => Ok((rest, Label { name: name.to_string(), span: cx.span(at, rest) })),
-        None if after.is_empty() || after.starts_with(['\n', '\r']) => failure(at, 1, "unclosed `[`"),
+        None if !after.split('\n').next().unwrap_or("").contains(']') => failure(at, 1, "unclosed `[`"),
         None => {
             let message = format!(
                 "unexpected {} in a label: labels hold letters, digits, `_`, `-`, `.` and `'`",

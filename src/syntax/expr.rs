@@ -1,10 +1,11 @@
-//! Expressions (FORMAT.md §1): one precedence climber over `+ - * / ^`, juxtaposition and
-//! unary minus, and the primaries under it (numbers, names, `pi`, parentheses, calls).
+//! Expressions (FORMAT.md §1): the entry points, and the operands of the precedence climber
+//! (numbers, names, `pi`, parentheses, calls, `√`, postfix `²` `³`).
 
 use super::ast::{BinOp, Chain, Expr, ExprKind, Func, Span};
 use super::chain::{chain_or_expr, ChainRules};
 use super::error::{no_match, Fail, PError, PResult, ParseOptions, SyntaxError};
 use super::lex::{describe, end, expected, ident, is_reserved, number, token_len, ws, Cx, Ident};
+use super::prec::climb;
 use num_rational::BigRational;
 
 /// Parses `src` as one expression (surrounding whitespace allowed).
@@ -38,128 +39,23 @@ pub fn parse_chain(src: &str, opts: &ParseOptions) -> Result<Chain, SyntaxError>
 /// `expr`: a whole expression at the start of `i` (after whitespace); `after` names what
 /// came before it for the "expected an expression after `=`" message.
 pub(crate) fn expr<'a>(cx: &Cx<'a>, i: &'a str, after: &str) -> PResult<'a, Expr> {
-    let (rest, (e, _height)) = climb(cx, i, 0, 0, after)?;
-    Ok((rest, e))
+    let (rest, (e, _height)) = climb(cx, i, 0, after)?;
+    Ok((rest, *e))
 }
 
 /// An expression with the height of its tree; the height is bounded like the nesting
 /// depth so that no later recursive pass over the tree (or its drop) can overflow.
-type Tree = (Expr, usize);
-
-/// The binary operators; their precedence and associativity live in [`Infix::prec`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Infix {
-    /// `+`
-    Add,
-    /// `-`, `−`
-    Sub,
-    /// `*`, `·`, `×`
-    Mul,
-    /// `/`
-    Div,
-    /// `^`
-    Pow,
-    /// Two factors side by side: `2 m`, `(a+b)(a-b)`.
-    Juxt,
-}
-
-/// The precedence of `^`: a unary minus and a juxtaposed factor take an operand at this level.
-const POWER: u8 = 3;
-
-impl Infix {
-    /// Binding strength: `+ -` < `* / juxtaposition` < `^`.
-    fn prec(self) -> u8 {
-        match self {
-            Infix::Add | Infix::Sub => 1,
-            Infix::Mul | Infix::Div | Infix::Juxt => 2,
-            Infix::Pow => POWER,
-        }
-    }
-
-    /// `^` groups to the right, the others to the left.
-    fn right_assoc(self) -> bool {
-        self == Infix::Pow
-    }
-
-    /// The node the operator builds.
-    fn bin_op(self) -> BinOp {
-        match self {
-            Infix::Add => BinOp::Add,
-            Infix::Sub => BinOp::Sub,
-            Infix::Mul | Infix::Juxt => BinOp::Mul,
-            Infix::Div => BinOp::Div,
-            Infix::Pow => BinOp::Pow,
-        }
-    }
-}
-
-/// The written forms of the binary operators.
-const INFIX: [(&str, Infix); 9] = [
-    ("+", Infix::Add),
-    ("-", Infix::Sub),
-    ("−", Infix::Sub),
-    ("*", Infix::Mul),
-    ("·", Infix::Mul),
-    ("⋅", Infix::Mul),
-    ("×", Infix::Mul),
-    ("/", Infix::Div),
-    ("^", Infix::Pow),
-];
-
-/// The operator after whitespace: its kind, its text, the input at it and after it.
-/// A factor that could start a product (never `-` or `+`) is juxtaposition, consuming nothing.
-fn infix<'a>(cx: &Cx<'a>, i: &'a str) -> Option<(Infix, &'static str, &'a str, &'a str)> {
-    let at = ws(cx, i);
-    for (text, op) in INFIX {
-        if let Some(rest) = at.strip_prefix(text) {
-            return Some((op, text, at, rest));
-        }
-    }
-    starts_factor(at).then_some((Infix::Juxt, "", at, at))
-}
-
-/// Whether `i` starts a primary: a number, a name that is not a reserved word, `(` or `√`.
-fn starts_factor(i: &str) -> bool {
-    let mut chars = i.chars();
-    match chars.next() {
-        Some(c) if c.is_ascii_digit() || c == '(' || c == '√' => true,
-        Some('.') => chars.next().is_some_and(|c| c.is_ascii_digit()),
-        _ => matches!(ident(i), Ok((_, id)) if !is_reserved(&id.name)),
-    }
-}
-
-/// The precedence climber: operands joined by operators binding at least `min_prec`.
-///
-/// Left-associative operators recurse at most once per precedence level; `^` recurses
-/// once per operator and so counts towards the nesting depth.
-fn climb<'a>(cx: &Cx<'a>, i: &'a str, min_prec: u8, depth: usize, after: &str) -> PResult<'a, Tree> {
-    let (mut i, mut lhs) = prefix(cx, i, depth, after)?;
-    while let Some((op, text, at, rest)) = infix(cx, i) {
-        if op.prec() < min_prec {
-            break;
-        }
-        let (rest, rhs) = if op.right_assoc() {
-            let (_, deeper) = cx.enter(at, depth)?;
-            climb(cx, rest, op.prec(), deeper, text)?
-        } else {
-            climb(cx, rest, op.prec().saturating_add(1), depth, text)?
-        };
-        let span = lhs.0.span.to(rhs.0.span);
-        let height = lhs.1.max(rhs.1);
-        let kind = ExprKind::Bin(op.bin_op(), Box::new(lhs.0), Box::new(rhs.0));
-        lhs = node(cx, at, kind, span, height)?;
-        i = rest;
-    }
-    Ok((i, lhs))
-}
+/// Boxed, because the box is what the parent node holds and because small results keep
+/// the frames of the recursive parsers small.
+pub(crate) type Tree = (Box<Expr>, usize);
 
 /// A node over children of height `below`, unless the tree gets too tall (error at `at`).
-fn node<'a>(cx: &Cx<'a>, at: &'a str, kind: ExprKind, span: Span, below: usize) -> Result<Tree, Fail<'a>> {
+pub(crate) fn node<'a>(cx: &Cx<'a>, at: &'a str, kind: ExprKind, span: Span, below: usize) -> Result<Tree, Fail<'a>> {
     let height = below.saturating_add(1);
     if height > cx.max_height {
         return Err(too_large(cx, at));
     }
-    Ok((Expr::new(kind, span), height))
+    Ok((Box::new(Expr::new(kind, span)), height))
 }
 
 /// "expression too large" at `at`.
@@ -173,52 +69,32 @@ fn too_large<'a>(cx: &Cx<'a>, at: &'a str) -> Fail<'a> {
     fail(at, token_len(at).max(1), message)
 }
 
-/// `prefix = ("-" | "−" | "+") prefix-operand | postfixed`, where the operand of a sign
-/// is a power (`-x^2` is `-(x^2)`) and a sign may follow `^` (`2^-1`).
-fn prefix<'a>(cx: &Cx<'a>, i: &'a str, depth: usize, after: &str) -> PResult<'a, Tree> {
-    let at = ws(cx, i);
-    for (sign, negate) in [("-", true), ("−", true), ("+", false)] {
-        if let Some(rest) = at.strip_prefix(sign) {
-            let (_, deeper) = cx.enter(at, depth)?;
-            let (rest, (e, height)) = climb(cx, rest, POWER, deeper, sign)?;
-            let span = Span::new(cx.pos(at), e.span.end);
-            let tree = if negate {
-                node(cx, at, ExprKind::Neg(Box::new(e)), span, height)?
-            } else {
-                (Expr::new(e.kind, span), height)
-            };
-            return Ok((rest, tree));
-        }
-    }
-    match postfixed(cx, at, depth) {
-        Err(nom::Err::Error(_)) => Err(no_expression(cx, at, after)),
-        other => other,
-    }
-}
-
 /// "expected an expression after `…`" at `at`. Errors are built out of line, keeping the
 /// frames of the recursive parsers small.
 #[cold]
 #[inline(never)]
-fn no_expression<'a>(cx: &Cx<'a>, at: &'a str, after: &str) -> Fail<'a> {
+/// At the end of the region the error sits where the expression should start, `i`.
+pub(crate) fn no_expression<'a>(cx: &Cx<'a>, i: &'a str, at: &'a str, after: &str) -> Fail<'a> {
     let what = if after.is_empty() {
         "expected an expression".to_string()
     } else {
         format!("expected an expression after `{after}`")
     };
-    let message = if at.is_empty() { what } else { format!("{what}, found {}", describe(cx, at)) };
-    fail(at, token_len(at), message)
+    if at.is_empty() {
+        return fail(i, 0, what);
+    }
+    fail(at, token_len(at), format!("{what}, found {}", describe(cx, at)))
 }
 
 /// A committed failure, as a value.
 #[cold]
 #[inline(never)]
-fn fail(at: &str, len: usize, message: String) -> Fail<'_> {
+pub(crate) fn fail(at: &str, len: usize, message: String) -> Fail<'_> {
     nom::Err::Failure(PError { at, len, message: Some(message) })
 }
 
 /// `postfixed = primary ("²" | "³")*`.
-fn postfixed<'a>(cx: &Cx<'a>, at: &'a str, depth: usize) -> PResult<'a, Tree> {
+pub(crate) fn postfixed<'a>(cx: &Cx<'a>, at: &'a str, depth: usize) -> PResult<'a, Tree> {
     let (mut i, mut tree) = primary(cx, at, depth)?;
     loop {
         let (power, c) = match i.chars().next() {
@@ -229,7 +105,7 @@ fn postfixed<'a>(cx: &Cx<'a>, at: &'a str, depth: usize) -> PResult<'a, Tree> {
         let rest = i.get(c.len_utf8()..).unwrap_or("");
         let exponent = Expr::new(ExprKind::Num(BigRational::from_integer(power.into())), cx.span(i, rest));
         let span = tree.0.span.to(exponent.span);
-        let kind = ExprKind::Bin(BinOp::Pow, Box::new(tree.0), Box::new(exponent));
+        let kind = ExprKind::Bin(BinOp::Pow, tree.0, Box::new(exponent));
         tree = node(cx, i, kind, span, tree.1)?;
         i = rest;
     }
@@ -239,7 +115,7 @@ fn postfixed<'a>(cx: &Cx<'a>, at: &'a str, depth: usize) -> PResult<'a, Tree> {
 /// Anything else is a recoverable no-match, so the caller can say what it expected.
 fn primary<'a>(cx: &Cx<'a>, at: &'a str, depth: usize) -> PResult<'a, Tree> {
     match number(at) {
-        Ok((rest, n)) => return Ok((rest, (Expr::new(ExprKind::Num(n), cx.span(at, rest)), 1))),
+        Ok((rest, n)) => return Ok((rest, (Box::new(Expr::new(ExprKind::Num(n), cx.span(at, rest))), 1))),
         Err(nom::Err::Error(_)) => {}
         Err(e) => return Err(e),
     }
@@ -258,9 +134,10 @@ fn primary<'a>(cx: &Cx<'a>, at: &'a str, depth: usize) -> PResult<'a, Tree> {
 /// `group = "(" expr ")"`; the node keeps the inner kind and spans the parentheses.
 fn group<'a>(cx: &Cx<'a>, open: &'a str, inner: &'a str, depth: usize) -> PResult<'a, Tree> {
     let (_, deeper) = cx.enter(open, depth)?;
-    let (rest, (e, height)) = climb(cx, inner, 0, deeper, "(")?;
+    let (rest, (mut e, height)) = climb(cx, inner, deeper, "(")?;
     let rest = close(cx, open, rest)?;
-    Ok((rest, (Expr::new(e.kind, cx.span(open, rest)), height)))
+    e.span = cx.span(open, rest);
+    Ok((rest, (e, height)))
 }
 
 /// The `)` matching the `(` at `open`: "unclosed `(`" at the end, "expected `)`" elsewhere.
@@ -288,7 +165,7 @@ fn root<'a>(cx: &Cx<'a>, at: &'a str, rest: &'a str, depth: usize) -> PResult<'a
         other => other?,
     };
     let span = Span::new(cx.pos(at), arg.span.end);
-    let tree = node(cx, at, ExprKind::Call(Func::Sqrt, vec![arg]), span, height)?;
+    let tree = node(cx, at, ExprKind::Call(Func::Sqrt, vec![*arg]), span, height)?;
     Ok((rest, tree))
 }
 
@@ -310,7 +187,7 @@ fn name<'a>(cx: &Cx<'a>, at: &'a str, rest: &'a str, id: Ident<'a>, depth: usize
         return Err(fail(at, len, message));
     }
     let kind = if id.name == "pi" { ExprKind::Pi } else { ExprKind::Sym(id.name) };
-    Ok((rest, (Expr::new(kind, cx.span(at, rest)), 1)))
+    Ok((rest, (Box::new(Expr::new(kind, cx.span(at, rest))), 1)))
 }
 
 /// "`sin` needs its argument in parentheses" for the function name `raw` at `at`.
@@ -333,8 +210,8 @@ fn call<'a>(cx: &Cx<'a>, at: &'a str, f: Func, open: &'a str, depth: usize) -> P
     let mut i = open.get(1..).unwrap_or("");
     let mut after = "(";
     loop {
-        let (rest, (arg, h)) = climb(cx, i, 0, deeper, after)?;
-        args.push(arg);
+        let (rest, (arg, h)) = climb(cx, i, deeper, after)?;
+        args.push(*arg);
         height = height.max(h);
         let next = ws(cx, rest);
         if let Some(rest) = next.strip_prefix(',') {

@@ -251,10 +251,12 @@ pub(crate) fn describe(cx: &Cx<'_>, i: &str) -> String {
     }
 }
 
-/// The committed error "expected `what`, found …" at the token starting `at` (after whitespace).
-pub(crate) fn expected<'a, T>(cx: &Cx<'a>, at: &'a str, what: &str) -> PResult<'a, T> {
-    let at = ws(cx, at);
-    failure(at, token_len(at), format!("expected {what}, found {}", describe(cx, at)))
+/// The committed error "expected `what`, found …" at the token after whitespace at `i`,
+/// or, when only whitespace and comments remain, right where `i` starts.
+pub(crate) fn expected<'a, T>(cx: &Cx<'a>, i: &'a str, what: &str) -> PResult<'a, T> {
+    let at = ws(cx, i);
+    let at_or_end = if at.is_empty() { i } else { at };
+    failure(at_or_end, token_len(at), format!("expected {what}, found {}", describe(cx, at)))
 }
 
 /// Succeeds when only whitespace (and comments) remain; otherwise says what was `wanted`.

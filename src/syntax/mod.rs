@@ -7,6 +7,7 @@ pub mod file;
 
 mod chain;
 mod lex;
+mod prec;
 mod stmt;
 
 #[cfg(test)]

@@ -113,13 +113,13 @@ fn relations_and_chains() {
 fn chain_errors() {
     let opts = ParseOptions::default();
     let src = "a + b";
-    let e = parse_chain(src, &opts).err().expect("no relation");
+    let e = parse_chain(src, &opts).expect_err("no relation");
     assert_err(src, &e, "expected an operator or a relation (`=`, `!=`, `<`, `<=`, `>`, `>=`, `~=`), found the end of the input", "5..5");
     let src = "a = ";
-    let e = parse_chain(src, &opts).err().expect("no rhs");
+    let e = parse_chain(src, &opts).expect_err("no rhs");
     assert_err(src, &e, "expected an expression after `=`", "4..4");
     let src = "a = b by [x]";
-    let e = parse_chain(src, &opts).err().expect("no by in plain chains");
+    let e = parse_chain(src, &opts).expect_err("no by in plain chains");
     assert_err(src, &e, "expected an operator, a relation or the end of the input, found `by`", "6..8");
 }
 
@@ -191,7 +191,7 @@ fn spans() {
 #[test]
 fn nesting_limit() {
     let deep = "(".repeat(1_000_000);
-    let e = expr(&deep).err().expect("too deep");
+    let e = expr(&deep).expect_err("too deep");
     assert_eq!(e.message, "expression nested deeper than 200 levels");
     assert_eq!((e.span.start, e.span.end), (200, 201));
     let ok = format!("{}x{}", "(".repeat(200), ")".repeat(200));
@@ -201,14 +201,14 @@ fn nesting_limit() {
     // each kind of nesting counts
     for unit in ["-", "sin(", "√", "2^"] {
         let src = unit.repeat(1_000_000);
-        let e = expr(&src).err().expect("too deep");
+        let e = expr(&src).expect_err("too deep");
         assert_eq!(e.message, "expression nested deeper than 200 levels", "{unit}");
     }
     assert!(expr(&format!("{}x", "-".repeat(200))).is_ok());
     assert!(expr(&format!("{}x", "x^".repeat(200))).is_ok());
     let small = ParseOptions { max_depth: 3 };
     assert!(parse_expr("((x))", &small).is_ok());
-    let e = parse_expr("(((-x)))", &small).err().expect("too deep");
+    let e = parse_expr("(((-x)))", &small).expect_err("too deep");
     assert_eq!((e.message.as_str(), e.span.start), ("expression nested deeper than 3 levels", 3));
 }
 
@@ -217,7 +217,7 @@ fn long_flat_expressions_are_bounded() {
     let sum = vec!["x"; 1000].join(" + ");
     assert!(expr(&sum).is_ok());
     let sum = vec!["x"; 1_000_000].join(" + ");
-    let e = expr(&sum).err().expect("too long");
+    let e = expr(&sum).expect_err("too long");
     assert!(e.message.starts_with("expression too large"), "{}", e.message);
     let product = "x ".repeat(1_000_000);
     assert!(expr(&product).is_err());

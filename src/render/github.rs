@@ -1,0 +1,49 @@
+//! `rigor check --format github`: GitHub Actions workflow commands, which show each
+//! diagnostic as an annotation on the pull request.
+
+use crate::check::report::FileReport;
+use crate::diag::{line_col, Diagnostic, Severity};
+
+/// One workflow command per diagnostic, each on its own line:
+/// `::error file=PATH,line=L,col=C,endLine=L2,endColumn=C2,title=CODE::MESSAGE`
+/// (`::warning` for warnings, `::notice` for notes). The message is followed by the
+/// diagnostic's notes on further lines. Escaping follows GitHub's rules: in the
+/// message `%`, `\r`, `\n` become `%25`, `%0D`, `%0A`; in properties also `:` and `,`
+/// become `%3A` and `%2C`.
+pub fn report(r: &FileReport) -> String {
+    r.diagnostics.iter().map(|d| command(r, d)).collect()
+}
+
+fn command(r: &FileReport, d: &Diagnostic) -> String {
+    let kind = match d.severity {
+        Severity::Error => "error",
+        Severity::Warning => "warning",
+        Severity::Note => "notice",
+    };
+    let mut props = vec![format!("file={}", escape_property(&r.path))];
+    if let Some((span, _)) = &d.primary {
+        let (line, col) = line_col(&r.source, span.start);
+        let (end_line, end_col) = line_col(&r.source, span.end.max(span.start));
+        props.push(format!("line={line}"));
+        props.push(format!("col={col}"));
+        props.push(format!("endLine={end_line}"));
+        props.push(format!("endColumn={end_col}"));
+    }
+    props.push(format!("title={}", escape_property(d.code)));
+    let mut message = d.message.clone();
+    for n in &d.notes {
+        message.push('\n');
+        message.push_str(n);
+    }
+    format!("::{kind} {}::{}\n", props.join(","), escape_data(&message))
+}
+
+/// A message: `%` → `%25`, `\r` → `%0D`, `\n` → `%0A`.
+pub fn escape_data(s: &str) -> String {
+    s.replace('%', "%25").replace('\r', "%0D").replace('\n', "%0A")
+}
+
+/// A property value: as [`escape_data`], and `:` → `%3A`, `,` → `%2C`.
+pub fn escape_property(s: &str) -> String {
+    escape_data(s).replace(':', "%3A").replace(',', "%2C")
+}

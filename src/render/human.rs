@@ -1,0 +1,112 @@
+//! Terminal output of `rigor check --format human`: rustc-style diagnostics, with
+//! `--verbose` one line per verified link, and the one-line summary.
+
+use crate::check::report::{FileReport, Justification, Status};
+use crate::diag::{line_col, render};
+
+/// The diagnostics of one file, rendered by [`crate::diag::render`] in their order,
+/// separated by blank lines. With `verbose`, each verified link also gets a line
+/// `path:line:col: verified (identity)` (or `(from [Fx], [MG])`, `(signs)`,
+/// `(approx)`), followed by `, assuming …` when it has side conditions; these lines
+/// are merged into the diagnostics by source position.
+pub fn report(r: &FileReport, verbose: bool) -> String {
+    let mut verified: Vec<(usize, String)> = Vec::new();
+    if verbose {
+        for link in r.claims.iter().flat_map(|c| &c.links) {
+            if let Status::Verified { how, side_conditions } = &link.status {
+                let (line, col) = line_col(&r.source, link.span.start);
+                let mut s = format!("{}:{line}:{col}: verified ({})", r.path, justification(how));
+                if !side_conditions.is_empty() {
+                    s.push_str(&format!(", assuming {}", side_conditions.join(", ")));
+                }
+                s.push('\n');
+                verified.push((link.span.start, s));
+            }
+        }
+        verified.sort_by_key(|(at, _)| *at);
+    }
+    let mut out = String::new();
+    let mut pending = verified.into_iter().peekable();
+    let mut previous_was_diagnostic = false;
+    for d in &r.diagnostics {
+        if let Some((at, _)) = &d.primary {
+            while let Some((_, s)) = pending.next_if(|(v, _)| *v <= at.start) {
+                out.push_str(&s);
+                previous_was_diagnostic = false;
+            }
+        }
+        if previous_was_diagnostic {
+            out.push('\n');
+        }
+        out.push_str(&render(d, &r.path, &r.source));
+        previous_was_diagnostic = true;
+    }
+    for (_, s) in pending {
+        out.push_str(&s);
+    }
+    out
+}
+
+/// `identity`, `from [Fx], [MG]`, `signs`, `approx`.
+fn justification(how: &Justification) -> String {
+    let facts = |fs: &[String]| {
+        fs.iter()
+            .map(|f| if f.starts_with("line ") { f.clone() } else { format!("[{f}]") })
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    match how {
+        Justification::Identity => "identity".to_string(),
+        Justification::Facts(fs) if fs.is_empty() => "from the facts".to_string(),
+        Justification::Facts(fs) => format!("from {}", facts(fs)),
+        Justification::Signs(fs) if fs.is_empty() => "signs".to_string(),
+        Justification::Signs(fs) => format!("signs, from {}", facts(fs)),
+        Justification::Approx => "approx".to_string(),
+    }
+}
+
+/// One line `files: N, claims: C, verified: V, failed: F, errors: E` (with a newline).
+///
+/// - `files`: the reports given;
+/// - `claims`: the links checked — each link of a chain counts, so a claim
+///   `a = b = c` counts 2;
+/// - `verified`: links verified;
+/// - `failed`: links refuted or left undecided;
+/// - `errors`: problems that are not a failed link: every error-severity diagnostic
+///   whose primary span does not lie inside a claim with a failed or undecided link
+///   (syntax errors, undeclared symbols, missing files, contradictory facts…), and
+///   one for each file with `input_error` that has no such diagnostic.
+pub fn summary(reports: &[FileReport]) -> String {
+    let claims: usize = reports.iter().map(FileReport::links).sum();
+    let verified: usize = reports.iter().map(FileReport::verified).sum();
+    let failed: usize = reports.iter().map(FileReport::failed).sum();
+    let errors: usize = reports.iter().map(errors).sum();
+    format!(
+        "files: {}, claims: {claims}, verified: {verified}, failed: {failed}, errors: {errors}\n",
+        reports.len()
+    )
+}
+
+/// The errors of one file, as defined in [`summary`].
+pub(crate) fn errors(r: &FileReport) -> usize {
+    let failing: Vec<_> = r
+        .claims
+        .iter()
+        .filter(|c| c.links.iter().any(|l| matches!(l.status, Status::Failed | Status::Undecided)))
+        .map(|c| c.span)
+        .collect();
+    let n = r
+        .diagnostics
+        .iter()
+        .filter(|d| d.severity == crate::diag::Severity::Error)
+        .filter(|d| match &d.primary {
+            Some((s, _)) => !failing.iter().any(|c| s.start >= c.start && s.start < c.end.max(c.start + 1)),
+            None => true,
+        })
+        .count();
+    if r.input_error && n == 0 {
+        1
+    } else {
+        n
+    }
+}

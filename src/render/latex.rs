@@ -1,0 +1,160 @@
+//! A standalone LaTeX worked solution (`rigor latex`) that compiles with pdflatex.
+//!
+//! The preamble uses only packages of a minimal TeX installation (`amsmath`,
+//! `amssymb`, `geometry`, `inputenc`). The font encoding stays the default OT1 —
+//! T1 would need the Latin Modern or cm-super fonts — so `<`, `>` and `|` in text
+//! are written as `\textless` and friends. Every user-written text is escaped and
+//! every formula comes from [`super::expr`], so any input gives a document that
+//! compiles.
+
+use super::solution::{build, Block, Inline, Just, Problem, Row};
+use super::text::{latex_lines, latex_text};
+use crate::check::report::FileReport;
+
+const PREAMBLE: &str = "\\documentclass[11pt]{article}
+\\usepackage[utf8]{inputenc}
+\\usepackage{amsmath}
+\\usepackage{amssymb}
+\\usepackage[margin=2.5cm]{geometry}
+\\setlength{\\parindent}{0pt}
+\\setlength{\\parskip}{0.6em}
+";
+
+/// The worked solution of a checked file as a standalone LaTeX document.
+///
+/// Claims are `align*` environments, one link per line with its justification;
+/// links that did not verify carry a bold `[not verified]` and the checker's message
+/// follows the claim. A file that could not be read gives a short document listing
+/// its diagnostics.
+pub fn document(report: &FileReport) -> String {
+    let solution = build(report);
+    let mut out = String::from(PREAMBLE);
+    out.push_str(&format!(
+        "\\title{{{}}}\n\\author{{}}\n\\date{{}}\n\\begin{{document}}\n\\maketitle\n",
+        text(&solution.title)
+    ));
+    for block in &solution.blocks {
+        out.push('\n');
+        block_latex(block, &mut out);
+    }
+    out.push_str("\n\\end{document}\n");
+    out
+}
+
+/// Escaped text, with `<`, `>` and `|` spelled out for the OT1 encoding.
+fn text(s: &str) -> String {
+    latex_text(s)
+        .replace('<', "\\textless{}")
+        .replace('>', "\\textgreater{}")
+        .replace('|', "\\textbar{}")
+}
+
+fn block_latex(block: &Block, out: &mut String) {
+    match block {
+        Block::Heading(level, t) => {
+            let cmd = match level {
+                0..=2 => "section",
+                3 => "subsection",
+                _ => "subsubsection",
+            };
+            out.push_str(&format!("\\{cmd}*{{{}}}\n", text(t)));
+        }
+        Block::Paragraph(parts) => {
+            for part in parts {
+                match part {
+                    Inline::Text(t) => out.push_str(&text(t)),
+                    Inline::Strong(t) => out.push_str(&format!("\\textbf{{{}}}", text(t))),
+                    Inline::Code(t) => out.push_str(&format!("\\texttt{{{}}}", text(t))),
+                    Inline::Math(m) => out.push_str(&format!("${m}$")),
+                }
+            }
+            out.push_str("\n\\par\n");
+        }
+        Block::Display { prefix, math, note, tag } => {
+            if let Some(p) = prefix {
+                out.push_str(&format!("\\textit{{{}}}\n", text(p)));
+            }
+            out.push_str("\\begin{equation*}\n");
+            out.push_str(math);
+            if let Some(n) = note {
+                out.push_str(&format!(" \\qquad\\text{{({})}}", text(n)));
+            }
+            if let Some(t) = tag {
+                out.push_str(&format!(" \\tag{{{}}}", text(t)));
+            }
+            out.push_str("\n\\end{equation*}\n");
+        }
+        Block::Claim { rows, tag } => {
+            out.push_str("\\begin{align*}\n");
+            for (k, row) in rows.iter().enumerate() {
+                row_latex(row, out);
+                if k == 0 {
+                    if let Some(t) = tag {
+                        out.push_str(&format!(" \\tag{{{}}}", text(t)));
+                    }
+                }
+                if k + 1 < rows.len() {
+                    out.push_str(" \\\\");
+                }
+                out.push('\n');
+            }
+            out.push_str("\\end{align*}\n");
+        }
+        Block::Problems(problems) => {
+            out.push_str("\\begin{quote}\\small\n");
+            for p in problems {
+                problem_latex(p, out);
+            }
+            out.push_str("\\end{quote}\n");
+        }
+        Block::Listing(listing) => {
+            for l in listing {
+                out.push_str(&latex_lines(l));
+                out.push_str("\\medskip\n");
+            }
+        }
+    }
+}
+
+/// One line of an `align*`: `lhs &= rhs \quad\text{(by …)}`.
+fn row_latex(row: &Row, out: &mut String) {
+    if let Some(lhs) = &row.lhs {
+        out.push_str(lhs);
+        out.push(' ');
+    }
+    out.push_str(&format!("&{} {}", row.rel, row.rhs));
+    match &row.by {
+        Some(Just::Text(t)) => out.push_str(&format!(" \\quad\\text{{(by {})}}", text(t))),
+        Some(Just::Labels(ls)) => {
+            let ls: Vec<String> = ls.iter().map(|l| format!("({})", text(l))).collect();
+            out.push_str(&format!(" \\quad\\text{{by {}}}", ls.join(", ")));
+        }
+        None => {}
+    }
+    if let Some(w) = &row.where_ {
+        out.push_str(&format!(" \\qquad {w}"));
+    }
+    if let Some(f) = row.flag {
+        out.push_str(&format!(" \\quad\\textbf{{[{f}]}}"));
+    }
+}
+
+fn problem_latex(p: &Problem, out: &mut String) {
+    let mut head = capitalise(p.kind);
+    if let Some(line) = p.line {
+        head.push_str(&format!(" (line {line})"));
+    }
+    out.push_str(&format!("\\textbf{{{}:}} {}\\par\n", text(&head), text(&p.message)));
+    for n in &p.notes {
+        out.push_str(&format!("\\hspace*{{1em}}{}\\par\n", text(n)));
+    }
+}
+
+/// `not verified` → `Not verified`.
+fn capitalise(s: &str) -> String {
+    let mut c = s.chars();
+    match c.next() {
+        Some(f) => f.to_uppercase().chain(c).collect(),
+        None => String::new(),
+    }
+}

@@ -1,0 +1,140 @@
+//! The worked solution as Markdown (`rigor markdown`): headings, prose with `$…$`
+//! math, displayed formulas in `$$…$$` blocks (claims as `aligned`), and failures
+//! as block quotes. The math is the same LaTeX as in [`super::latex`]; text inside
+//! `\text{…}` and `\tag{…}` is made safe for MathJax and KaTeX.
+
+use super::solution::{build, Block, Inline, Just, Problem, Row};
+use super::text::{markdown_inline, markdown_message, markdown_text, mathjax_text};
+use crate::check::report::FileReport;
+
+/// The worked solution of a checked file as Markdown.
+///
+/// Links that did not verify carry `\textbf{[not verified]}`, and after the claim
+/// each diagnostic follows as `> **not verified** (line N): message`.
+pub fn document(report: &FileReport) -> String {
+    let solution = build(report);
+    let mut out = format!("# {}\n", markdown_text(&solution.title));
+    for block in &solution.blocks {
+        out.push('\n');
+        block_markdown(block, &mut out);
+    }
+    out
+}
+
+fn block_markdown(block: &Block, out: &mut String) {
+    match block {
+        Block::Heading(level, t) => {
+            let level = (*level).clamp(2, 6);
+            out.push_str(&format!("{} {}\n", "#".repeat(level), markdown_text(t)));
+        }
+        Block::Paragraph(parts) => {
+            let mut line = String::new();
+            for part in parts {
+                match part {
+                    Inline::Text(t) if line.is_empty() => line.push_str(&markdown_text(t)),
+                    Inline::Text(t) => line.push_str(&markdown_inline(t)),
+                    Inline::Strong(t) => line.push_str(&format!("**{}**", markdown_inline(t))),
+                    Inline::Code(t) => line.push_str(&code(t)),
+                    Inline::Math(m) => line.push_str(&format!("${m}$")),
+                }
+            }
+            out.push_str(&line);
+            out.push('\n');
+        }
+        Block::Display { prefix, math, note, tag } => {
+            if let Some(p) = prefix {
+                out.push_str(&format!("*{}*\n\n", markdown_inline(p)));
+            }
+            out.push_str("$$\n");
+            out.push_str(math);
+            if let Some(n) = note {
+                out.push_str(&format!(" \\qquad\\text{{({})}}", mathjax_text(n)));
+            }
+            if let Some(t) = tag {
+                out.push_str(&format!(" \\tag{{{}}}", mathjax_text(t)));
+            }
+            out.push_str("\n$$\n");
+        }
+        Block::Claim { rows, tag } => {
+            out.push_str("$$\n\\begin{aligned}\n");
+            for (k, row) in rows.iter().enumerate() {
+                row_markdown(row, out);
+                if k + 1 < rows.len() {
+                    out.push_str(" \\\\");
+                }
+                out.push('\n');
+            }
+            out.push_str("\\end{aligned}");
+            if let Some(t) = tag {
+                out.push_str(&format!(" \\tag{{{}}}", mathjax_text(t)));
+            }
+            out.push_str("\n$$\n");
+        }
+        Block::Problems(problems) => {
+            for (k, p) in problems.iter().enumerate() {
+                if k > 0 {
+                    out.push('\n');
+                }
+                problem_markdown(p, out);
+            }
+        }
+        Block::Listing(listing) => {
+            out.push_str("```text\n");
+            for l in listing {
+                out.push_str(&l.replace("```", "'''"));
+                if !l.ends_with('\n') {
+                    out.push('\n');
+                }
+            }
+            out.push_str("```\n");
+        }
+    }
+}
+
+/// `` `text` ``, with a fence longer than any run of backticks inside.
+fn code(t: &str) -> String {
+    let t = t.replace(['\n', '\r'], " ");
+    let mut longest = 0;
+    let mut run = 0;
+    for c in t.chars() {
+        run = if c == '`' { run + 1 } else { 0 };
+        longest = longest.max(run);
+    }
+    let fence = "`".repeat(longest + 1);
+    let pad = if t.starts_with('`') || t.ends_with('`') { " " } else { "" };
+    format!("{fence}{pad}{t}{pad}{fence}")
+}
+
+fn row_markdown(row: &Row, out: &mut String) {
+    if let Some(lhs) = &row.lhs {
+        out.push_str(lhs);
+        out.push(' ');
+    }
+    out.push_str(&format!("&{} {}", row.rel, row.rhs));
+    match &row.by {
+        Some(Just::Text(t)) => out.push_str(&format!(" \\quad\\text{{(by {})}}", mathjax_text(t))),
+        Some(Just::Labels(ls)) => {
+            let ls: Vec<String> = ls.iter().map(|l| format!("({})", mathjax_text(l))).collect();
+            out.push_str(&format!(" \\quad\\text{{by {}}}", ls.join(", ")));
+        }
+        None => {}
+    }
+    if let Some(w) = &row.where_ {
+        out.push_str(&format!(" \\qquad {w}"));
+    }
+    if let Some(f) = row.flag {
+        out.push_str(&format!(" \\quad\\textbf{{[{f}]}}"));
+    }
+}
+
+/// `> **not verified** (line N): message`, notes on further quoted lines.
+fn problem_markdown(p: &Problem, out: &mut String) {
+    out.push_str(&format!("> **{}**", p.kind));
+    if let Some(line) = p.line {
+        out.push_str(&format!(" (line {line})"));
+    }
+    out.push_str(&format!(": {}\n", markdown_message(&p.message)));
+    for n in &p.notes {
+        out.push_str(&format!(">\n> {}\n", markdown_message(n)));
+    }
+}

@@ -1,0 +1,436 @@
+//! The worked solution as a sequence of blocks, shared by the LaTeX and Markdown
+//! renderers: they differ only in how they write text, displays and problems.
+//!
+//! Math is LaTeX already (from [`super::expr`]); text is raw, as the user wrote it,
+//! and each renderer escapes it for its own output.
+
+use super::expr::{chain_latex_in, expr_latex_in, rel_latex, symbol, Ctx};
+use crate::check::report::{ClaimReport, FileReport, Status};
+use crate::diag::{line_col, Diagnostic, Severity};
+use crate::syntax::ast::{
+    Assign, BodyDef, By, Chain, File, Item, Label, Name, ProsePart, SignDecl, Span, Stmt, StmtKind,
+};
+
+/// A piece of a paragraph.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Inline {
+    /// Raw text.
+    Text(String),
+    /// Raw text in bold.
+    Strong(String),
+    /// Raw text in a typewriter font (a file name).
+    Code(String),
+    /// Inline math (LaTeX).
+    Math(String),
+}
+
+/// The justification of a link.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Just {
+    /// `by some words` (raw text).
+    Text(String),
+    /// `by [Fx], [MG]` (raw label names).
+    Labels(Vec<String>),
+}
+
+/// One line of a displayed claim.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Row {
+    /// The left-hand side, on the first line only (LaTeX).
+    pub lhs: Option<String>,
+    /// The relation (LaTeX).
+    pub rel: &'static str,
+    /// The right-hand side (LaTeX).
+    pub rhs: String,
+    /// The justification written after `by`.
+    pub by: Option<Just>,
+    /// `\text{where } …` on the last line (LaTeX).
+    pub where_: Option<String>,
+    /// A marker for a link that is not verified (`not verified`, `not checked`).
+    pub flag: Option<&'static str>,
+}
+
+/// A diagnostic shown in the document.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Problem {
+    /// `not verified`, `error`, `warning` or `note`.
+    pub kind: &'static str,
+    /// The 1-based line it points at.
+    pub line: Option<usize>,
+    /// The message (raw text).
+    pub message: String,
+    /// Its notes (raw text).
+    pub notes: Vec<String>,
+}
+
+/// A block of the document.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Block {
+    /// A heading (level 1 for `#` after the title, 2 for `##`, …) with raw text.
+    Heading(usize, String),
+    /// A paragraph.
+    Paragraph(Vec<Inline>),
+    /// A displayed formula: `prefix` (raw text) before it, `note` (raw text) after it
+    /// in parentheses, and a tag (raw label).
+    Display {
+        /// Raw text shown before the formula.
+        prefix: Option<String>,
+        /// The formula (LaTeX).
+        math: String,
+        /// Raw text shown after it in parentheses (`given`).
+        note: Option<String>,
+        /// The label, as a tag.
+        tag: Option<String>,
+    },
+    /// A claim: aligned rows, its label as a tag.
+    Claim {
+        /// The rows, one per link.
+        rows: Vec<Row>,
+        /// The label.
+        tag: Option<String>,
+    },
+    /// Diagnostics about the statement above.
+    Problems(Vec<Problem>),
+    /// Rendered diagnostics (rustc style) of a file that could not be read.
+    Listing(Vec<String>),
+}
+
+/// A whole worked solution.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Solution {
+    /// The title (raw text).
+    pub title: String,
+    /// The blocks in order.
+    pub blocks: Vec<Block>,
+}
+
+/// The worked solution of a report.
+pub(crate) fn build(report: &FileReport) -> Solution {
+    let file_name = std::path::Path::new(&report.path)
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .filter(|n| !n.is_empty())
+        .unwrap_or_else(|| "Worked solution".to_string());
+    let Some(ast) = &report.ast else {
+        let mut blocks = vec![Block::Paragraph(vec![
+            Inline::Text("The file ".into()),
+            Inline::Code(report.path.clone()),
+            Inline::Text(" could not be read, so no worked solution was produced.".into()),
+        ])];
+        let listing: Vec<String> = report
+            .diagnostics
+            .iter()
+            .map(|d| crate::diag::render(d, &report.path, &report.source))
+            .collect();
+        if !listing.is_empty() {
+            blocks.push(Block::Listing(listing));
+        }
+        return Solution { title: file_name, blocks };
+    };
+    Builder::new(report, ast).run(file_name)
+}
+
+/// Walks the file, keeping track of which diagnostics were shown.
+struct Builder<'a> {
+    report: &'a FileReport,
+    ast: &'a File,
+    ctx: Ctx,
+    shown: Vec<bool>,
+    blocks: Vec<Block>,
+}
+
+impl<'a> Builder<'a> {
+    fn new(report: &'a FileReport, ast: &'a File) -> Builder<'a> {
+        Builder {
+            report,
+            ast,
+            ctx: Ctx::from_file(ast),
+            shown: vec![false; report.diagnostics.len()],
+            blocks: Vec::new(),
+        }
+    }
+
+    fn run(mut self, file_name: String) -> Solution {
+        let mut title = None;
+        let mut prose: Vec<Inline> = Vec::new();
+        let mut decls: Vec<Inline> = Vec::new();
+        let mut decl_problems: Vec<Problem> = Vec::new();
+        for item in &self.ast.items {
+            let is_prose = matches!(item, Item::Prose { .. });
+            let is_decl = matches!(item, Item::Stmt(s) if is_declaration(&s.kind));
+            if !is_prose && !prose.is_empty() {
+                self.blocks.push(Block::Paragraph(std::mem::take(&mut prose)));
+            }
+            if !is_decl {
+                self.finish_decls(&mut decls, &mut decl_problems);
+            }
+            match item {
+                Item::Heading { level, text, .. } => {
+                    if *level == 1 && title.is_none() {
+                        title = Some(text.clone());
+                    } else {
+                        self.blocks.push(Block::Heading((*level).max(1), text.clone()));
+                    }
+                }
+                Item::Prose { parts, .. } => {
+                    if !prose.is_empty() {
+                        prose.push(Inline::Text(" ".into()));
+                    }
+                    for part in parts {
+                        prose.push(match part {
+                            ProsePart::Text(t) => Inline::Text(t.clone()),
+                            ProsePart::Math(c) => Inline::Math(chain_latex_in(c, &self.ctx)),
+                            ProsePart::MathExpr(e) => Inline::Math(expr_latex_in(e, &self.ctx)),
+                        });
+                    }
+                }
+                Item::Stmt(stmt) if is_declaration(&stmt.kind) => {
+                    self.declaration(&stmt.kind, &mut decls);
+                    decl_problems.extend(self.attach(stmt.span, false));
+                }
+                Item::Stmt(stmt) => self.statement(stmt),
+            }
+        }
+        if !prose.is_empty() {
+            self.blocks.push(Block::Paragraph(prose));
+        }
+        self.finish_decls(&mut decls, &mut decl_problems);
+        let rest: Vec<Problem> = self
+            .report
+            .diagnostics
+            .iter()
+            .zip(&self.shown)
+            .filter(|(_, shown)| !**shown)
+            .map(|(d, _)| self.problem(d, false))
+            .collect();
+        if !rest.is_empty() {
+            self.blocks.push(Block::Heading(2, "Problems found by the checker".into()));
+            self.blocks.push(Block::Problems(rest));
+        }
+        Solution { title: title.unwrap_or(file_name), blocks: self.blocks }
+    }
+
+    /// Ends a run of declarations: the "Given quantities" sentence and its problems.
+    fn finish_decls(&mut self, decls: &mut Vec<Inline>, problems: &mut Vec<Problem>) {
+        if !decls.is_empty() {
+            let mut p = vec![Inline::Strong("Given quantities:".into()), Inline::Text(" ".into())];
+            p.append(decls);
+            p.push(Inline::Text(".".into()));
+            self.blocks.push(Block::Paragraph(p));
+        }
+        if !problems.is_empty() {
+            self.blocks.push(Block::Problems(std::mem::take(problems)));
+        }
+    }
+
+    /// Appends one declaration to the "Given quantities" sentence.
+    fn declaration(&self, kind: &StmtKind, out: &mut Vec<Inline>) {
+        if !out.is_empty() {
+            out.push(Inline::Text("; ".into()));
+        }
+        let names = |ns: &[Name]| ns.iter().map(|n| symbol(&n.name)).collect::<Vec<_>>().join(", ");
+        match kind {
+            StmtKind::Symbols { names: ns, sign } => {
+                let sign = match sign {
+                    SignDecl::Any => "",
+                    SignDecl::Positive => " > 0",
+                    SignDecl::Nonnegative => " \\geq 0",
+                    SignDecl::Nonzero => " \\neq 0",
+                };
+                out.push(Inline::Math(format!("{}{sign}", names(ns))));
+            }
+            StmtKind::Time { names: ns } => {
+                out.push(Inline::Text("functions of time ".into()));
+                out.push(Inline::Math("t".into()));
+                out.push(Inline::Text(": ".into()));
+                out.push(Inline::Math(names(ns)));
+            }
+            StmtKind::Unknowns { names: ns } => {
+                out.push(Inline::Text("unknowns: ".into()));
+                out.push(Inline::Math(names(ns)));
+            }
+            StmtKind::Units { decls } => {
+                out.push(Inline::Text("units: ".into()));
+                for (k, d) in decls.iter().enumerate() {
+                    if k > 0 {
+                        out.push(Inline::Text(", ".into()));
+                    }
+                    out.push(Inline::Math(symbol(&d.name.name)));
+                    out.push(Inline::Text(format!(" in {}", d.unit)));
+                }
+            }
+            _ => {}
+        }
+    }
+
+    fn statement(&mut self, stmt: &Stmt) {
+        let ctx = &self.ctx;
+        match &stmt.kind {
+            StmtKind::Body { name, def } => {
+                let math = match def {
+                    BodyDef::Concrete { dm, ranges } => {
+                        let mut m = format!("dm = {}", expr_latex_in(dm, ctx));
+                        for r in ranges {
+                            m.push_str(&format!(
+                                ",\\quad {} \\leq {} \\leq {}",
+                                expr_latex_in(&r.from, ctx),
+                                symbol(&r.var.name),
+                                expr_latex_in(&r.to, ctx)
+                            ));
+                        }
+                        m
+                    }
+                    BodyDef::Abstract { mass, coords, centred } => {
+                        let coords: Vec<String> = coords.iter().map(|c| symbol(&c.name)).collect();
+                        let mut m = format!(
+                            "\\text{{mass }} {},\\quad \\text{{coordinates }} {}",
+                            expr_latex_in(mass, ctx),
+                            coords.join(", ")
+                        );
+                        if *centred {
+                            m.push_str(",\\quad \\text{centred at the centre of mass}");
+                        }
+                        m
+                    }
+                };
+                self.blocks.push(Block::Display {
+                    prefix: Some(format!("Body {}:", name.name)),
+                    math,
+                    note: None,
+                    tag: None,
+                });
+            }
+            StmtKind::Let { name, value } => {
+                let math = format!("{} := {}", symbol(&name.name), expr_latex_in(value, ctx));
+                self.blocks.push(Block::Display { prefix: None, math, note: None, tag: None });
+            }
+            StmtKind::Given { label, chain } | StmtKind::Constraint { label, chain } => {
+                let note = if matches!(stmt.kind, StmtKind::Given { .. }) { "given" } else { "constraint" };
+                self.blocks.push(Block::Display {
+                    prefix: None,
+                    math: chain_latex_in(chain, ctx),
+                    note: Some(note.into()),
+                    tag: label.as_ref().map(|l| l.name.clone()),
+                });
+            }
+            StmtKind::Claim { label, chain, where_ } => {
+                let rows = self.claim_rows(stmt, chain, where_);
+                self.blocks.push(Block::Claim { rows, tag: label.as_ref().map(|l| l.name.clone()) });
+            }
+            StmtKind::Use { labels, path, with, .. } => {
+                let mut p = vec![
+                    Inline::Text("From ".into()),
+                    Inline::Code(path.clone()),
+                    Inline::Text(format!(" we use {}", label_list(labels))),
+                ];
+                if !with.is_empty() {
+                    p.push(Inline::Text(" with ".into()));
+                    p.push(Inline::Math(assignments(with, ctx)));
+                }
+                p.push(Inline::Text(".".into()));
+                self.blocks.push(Block::Paragraph(p));
+            }
+            _ => {}
+        }
+        let in_claim = matches!(stmt.kind, StmtKind::Claim { .. });
+        let problems = self.attach(stmt.span, in_claim);
+        if !problems.is_empty() {
+            self.blocks.push(Block::Problems(problems));
+        }
+    }
+
+    fn claim_rows(&self, stmt: &Stmt, chain: &Chain, where_: &[Assign]) -> Vec<Row> {
+        let claim = self.claim_report(stmt);
+        let n = chain.links.len();
+        chain
+            .links
+            .iter()
+            .enumerate()
+            .map(|(k, link)| {
+                let status = claim
+                    .and_then(|c| c.links.get(k))
+                    .map(|l| &l.status)
+                    .or_else(|| self.report.link_status(link.span));
+                let flag = match status {
+                    Some(Status::Failed | Status::Undecided) => Some("not verified"),
+                    Some(Status::Error) => Some("not checked"),
+                    _ => None,
+                };
+                let by = link.by.as_ref().map(|(by, _)| match by {
+                    By::Text(t) => Just::Text(t.clone()),
+                    By::Labels(ls) => Just::Labels(ls.iter().map(|l| l.name.clone()).collect()),
+                });
+                let where_ = (k + 1 == n && !where_.is_empty())
+                    .then(|| format!("\\text{{where }} {}", assignments(where_, &self.ctx)));
+                Row {
+                    lhs: (k == 0).then(|| expr_latex_in(&chain.first, &self.ctx)),
+                    rel: rel_latex(link.op),
+                    rhs: expr_latex_in(&link.rhs, &self.ctx),
+                    by,
+                    where_,
+                    flag,
+                }
+            })
+            .collect()
+    }
+
+    /// The report of the claim `stmt`: by span, else by line.
+    fn claim_report(&self, stmt: &Stmt) -> Option<&'a ClaimReport> {
+        let claims = &self.report.claims;
+        claims.iter().find(|c| c.span == stmt.span).or_else(|| {
+            let line = line_col(&self.report.source, stmt.span.start).0;
+            claims.iter().find(|c| c.line == line)
+        })
+    }
+
+    /// The diagnostics not shown yet that point into `span`, now marked shown.
+    fn attach(&mut self, span: Span, in_claim: bool) -> Vec<Problem> {
+        let mut found = Vec::new();
+        for (k, d) in self.report.diagnostics.iter().enumerate() {
+            let inside = d
+                .primary
+                .as_ref()
+                .is_some_and(|(s, _)| s.start >= span.start && s.start < span.end.max(span.start + 1));
+            if inside && !self.shown[k] {
+                self.shown[k] = true;
+                found.push(self.problem(d, in_claim));
+            }
+        }
+        found
+    }
+
+    fn problem(&self, d: &Diagnostic, in_claim: bool) -> Problem {
+        let kind = match d.severity {
+            Severity::Error if in_claim => "not verified",
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+            Severity::Note => "note",
+        };
+        Problem {
+            kind,
+            line: d.primary.as_ref().map(|(s, _)| line_col(&self.report.source, s.start).0),
+            message: d.message.clone(),
+            notes: d.notes.clone(),
+        }
+    }
+}
+
+fn is_declaration(kind: &StmtKind) -> bool {
+    matches!(
+        kind,
+        StmtKind::Symbols { .. } | StmtKind::Time { .. } | StmtKind::Unknowns { .. } | StmtKind::Units { .. }
+    )
+}
+
+/// `(IO), (X)`.
+fn label_list(labels: &[Label]) -> String {
+    labels.iter().map(|l| format!("({})", l.name)).collect::<Vec<_>>().join(", ")
+}
+
+/// `a = 1,\ b = 2` (LaTeX).
+fn assignments(list: &[Assign], ctx: &Ctx) -> String {
+    list.iter()
+        .map(|a| format!("{} = {}", symbol(&a.name.name), expr_latex_in(&a.value, ctx)))
+        .collect::<Vec<_>>()
+        .join(",\\ ")
+}
