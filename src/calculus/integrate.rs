@@ -58,6 +58,9 @@ pub fn antiderivative(f: &Rat, x: AtomId, s: &Assumptions) -> Result<Rat, IntErr
         )));
     }
     let den = Rat::poly(f.den().clone())?;
+    if let Some(p) = polynomial_antiderivative(f, x) {
+        return Ok(Rat::poly(p)?.div(&den)?);
+    }
     let mut total = Rat::zero();
     // Group the numerator's terms by their factor that depends on x other than x itself.
     for (m, q) in f.num().terms() {
@@ -84,6 +87,29 @@ pub fn antiderivative(f: &Rat, x: AtomId, s: &Assumptions) -> Result<Rat, IntErr
         total = total.add(&coeff.mul(&part)?)?;
     }
     Ok(total.div(&den)?)
+}
+
+/// The fast path: when nothing but `x` itself depends on `x`, integrate term by term
+/// (`x^k → x^(k+1)/(k+1)`) without leaving the polynomial ring.
+fn polynomial_antiderivative(f: &Rat, x: AtomId) -> Option<Poly> {
+    let mut terms = Vec::with_capacity(f.num().len());
+    for (m, q) in f.num().terms() {
+        let mut pairs = Vec::with_capacity(m.pairs().len() + 1);
+        let mut k = 0u32;
+        for &(a, e) in m.pairs() {
+            if a == x {
+                k = e;
+            } else if atom_depends_on(a, x) {
+                return None;
+            } else {
+                pairs.push((a, e));
+            }
+        }
+        pairs.push((x, k.checked_add(1)?));
+        let m2 = Mono::from_pairs(pairs)?;
+        terms.push((m2, q / Q::from_integer(BigInt::from(u64::from(k) + 1))));
+    }
+    Some(Poly::from_terms(terms))
 }
 
 /// `∫ x^k · Π dep dx` for sine, cosine and exponential factors of linear arguments.

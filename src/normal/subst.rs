@@ -120,7 +120,7 @@ impl<'a> Subst<'a> {
                 }
             }
         }
-        let mut num = Poly::zero();
+        let mut acc: Vec<(Mono, Q)> = Vec::with_capacity(p.len());
         for (m, q) in p.terms() {
             let mut keep = Vec::new();
             let mut t = Poly::constant(q.clone());
@@ -139,8 +139,15 @@ impl<'a> Subst<'a> {
                 }
             }
             let keep = Mono::from_pairs(keep).ok_or(super::Limit::Exponent)?;
-            num = num.add(&t.mul_term(&keep, &Q::one())?);
+            acc.extend(t.mul_term(&keep, &Q::one())?.terms().iter().cloned());
+            if acc.len() > super::poly::max_terms().saturating_mul(4) {
+                acc = Poly::from_terms(acc).terms().to_vec();
+                if acc.len() > super::poly::max_terms() {
+                    return Err(super::Limit::Terms.into());
+                }
+            }
         }
+        let num = Poly::from_terms(acc);
         let mut den = Poly::one();
         for (a, d) in &top {
             if let Some(v) = vals.get(a) {

@@ -4,7 +4,9 @@
 use super::ast::{Assign, By, Expr, Func, Label, Link, Name, RelOp, Span};
 use super::error::{failure, no_match, PResult};
 use super::expr::expr;
-use super::lex::{describe, expected, hspace, ident, is_reserved, keyword, punct, token_len, ws, Cx};
+use super::lex::{
+    describe, expected, hspace, ident, is_reserved, keyword, punct, token_len, ws, Cx,
+};
 
 /// What a chain may contain where it is parsed.
 #[derive(Clone, Copy, Debug)]
@@ -34,13 +36,22 @@ const RELOPS: [(&str, RelOp); 11] = [
 ];
 
 /// `relop`: after whitespace, a relation operator: its kind, text, the input at it and after it.
-pub(crate) fn relop<'a>(cx: &Cx<'a>, i: &'a str) -> Option<(RelOp, &'static str, &'a str, &'a str)> {
+pub(crate) fn relop<'a>(
+    cx: &Cx<'a>,
+    i: &'a str,
+) -> Option<(RelOp, &'static str, &'a str, &'a str)> {
     let at = ws(cx, i);
-    RELOPS.iter().find_map(|&(text, op)| at.strip_prefix(text).map(|rest| (op, text, at, rest)))
+    RELOPS
+        .iter()
+        .find_map(|&(text, op)| at.strip_prefix(text).map(|rest| (op, text, at, rest)))
 }
 
 /// `chain-or-expr = expr link*`: an expression followed by any number of links.
-pub(crate) fn chain_or_expr<'a>(cx: &Cx<'a>, i: &'a str, rules: ChainRules<'_>) -> PResult<'a, (Expr, Vec<Link>)> {
+pub(crate) fn chain_or_expr<'a>(
+    cx: &Cx<'a>,
+    i: &'a str,
+    rules: ChainRules<'_>,
+) -> PResult<'a, (Expr, Vec<Link>)> {
     let (mut i, first) = expr(cx, i, rules.after)?;
     let mut links = Vec::new();
     while let Some((op, text, at, rest)) = relop(cx, i) {
@@ -52,18 +63,41 @@ pub(crate) fn chain_or_expr<'a>(cx: &Cx<'a>, i: &'a str, rules: ChainRules<'_>) 
 }
 
 /// `link = relop expr ["by" justification]`; `at` is the operator, `rest` what follows it.
-fn link<'a>(cx: &Cx<'a>, at: &'a str, op: RelOp, text: &str, rest: &'a str, rules: ChainRules<'_>) -> PResult<'a, Link> {
+fn link<'a>(
+    cx: &Cx<'a>,
+    at: &'a str,
+    op: RelOp,
+    text: &str,
+    rest: &'a str,
+    rules: ChainRules<'_>,
+) -> PResult<'a, Link> {
     let (rest, rhs) = expr(cx, rest, text)?;
     let start = cx.pos(at);
     match keyword(cx, rest, "by").filter(|_| rules.by) {
         Some((by_at, after_by)) => {
             let (rest, (by, by_span)) = by_clause(cx, by_at, after_by, rules)?;
             let span = Span::new(start, by_span.end);
-            Ok((rest, Link { op, rhs, by: Some((by, by_span)), span }))
+            Ok((
+                rest,
+                Link {
+                    op,
+                    rhs,
+                    by: Some((by, by_span)),
+                    span,
+                },
+            ))
         }
         None => {
             let span = Span::new(start, rhs.span.end);
-            Ok((rest, Link { op, rhs, by: None, span }))
+            Ok((
+                rest,
+                Link {
+                    op,
+                    rhs,
+                    by: None,
+                    span,
+                },
+            ))
         }
     }
 }
@@ -71,9 +105,16 @@ fn link<'a>(cx: &Cx<'a>, at: &'a str, op: RelOp, text: &str, rest: &'a str, rule
 /// `justification`: the rest of the line after `by` (up to a comment), as labels
 /// `[a], [b] and [c]` when it is exactly that, else as text. In a claim, a whole word
 /// `where` ends the text unless the next line starts another link or the `where` clause.
-fn by_clause<'a>(cx: &Cx<'a>, by_at: &'a str, after_by: &'a str, rules: ChainRules<'_>) -> PResult<'a, (By, Span)> {
+fn by_clause<'a>(
+    cx: &Cx<'a>,
+    by_at: &'a str,
+    after_by: &'a str,
+    rules: ChainRules<'_>,
+) -> PResult<'a, (By, Span)> {
     let text_at = hspace(after_by);
-    let line_len = text_at.find(|c| c == '\n' || (cx.comments && c == '%')).unwrap_or(text_at.len());
+    let line_len = text_at
+        .find(|c| c == '\n' || (cx.comments && c == '%'))
+        .unwrap_or(text_at.len());
     let line = text_at.get(..line_len).unwrap_or("");
     let mut raw = line.trim_end();
     if rules.where_ {
@@ -102,7 +143,9 @@ fn find_word(text: &str, word: &str) -> Option<usize> {
     let is_name = |c: char| c.is_alphanumeric() || c == '_' || c == '\'';
     text.match_indices(word).map(|(k, _)| k).find(|&k| {
         let before = text.get(..k).and_then(|s| s.chars().next_back());
-        let after = text.get(k.saturating_add(word.len())..).and_then(|s| s.chars().next());
+        let after = text
+            .get(k.saturating_add(word.len())..)
+            .and_then(|s| s.chars().next());
         !before.is_some_and(is_name) && !after.is_some_and(is_name)
     })
 }
@@ -123,14 +166,26 @@ pub(crate) fn label<'a>(cx: &Cx<'a>, i: &'a str) -> PResult<'a, Label> {
     let after = inner.get(name_len..).unwrap_or("");
     match after.strip_prefix(']') {
         Some(_) if name.is_empty() => failure(at, 2, "expected a label name between `[` and `]`"),
-        Some(rest) => Ok((rest, Label { name: name.to_string(), span: cx.span(at, rest) })),
-        None if !after.split('\n').next().unwrap_or("").contains(']') => failure(at, 1, "unclosed `[`"),
+        Some(rest) => Ok((
+            rest,
+            Label {
+                name: name.to_string(),
+                span: cx.span(at, rest),
+            },
+        )),
+        None if !after.split('\n').next().unwrap_or("").contains(']') => {
+            failure(at, 1, "unclosed `[`")
+        }
         None => {
             let message = format!(
                 "unexpected {} in a label: labels hold letters, digits, `_`, `-`, `.` and `'`",
                 describe(cx, after)
             );
-            failure(after, after.chars().next().map_or(0, char::len_utf8), message)
+            failure(
+                after,
+                after.chars().next().map_or(0, char::len_utf8),
+                message,
+            )
         }
     }
 }
@@ -162,20 +217,37 @@ pub(crate) fn name<'a>(cx: &Cx<'a>, i: &'a str, what: &str, primes: bool) -> PRe
     let at = ws(cx, i);
     let (rest, id) = match ident(at) {
         Ok((rest, id)) if !is_reserved(&id.name) => (rest, id),
-        _ => return expected(cx, at, what),
+        _ => return expected(cx, i, what),
     };
     let len = id.raw.len();
     if Func::from_name(&id.name).is_some() {
-        return failure(at, len, format!("expected {what}, found the function `{}`", id.raw));
+        return failure(
+            at,
+            len,
+            format!("expected {what}, found the function `{}`", id.raw),
+        );
     }
     if id.name == "pi" {
-        return failure(at, len, format!("expected {what}, found the constant `{}`", id.raw));
+        return failure(
+            at,
+            len,
+            format!("expected {what}, found the constant `{}`", id.raw),
+        );
     }
     if !primes && id.name.ends_with('\'') {
-        let message = format!("expected {what}, found `{}`: primes mark time derivatives", id.raw);
+        let message = format!(
+            "expected {what}, found `{}`: primes mark time derivatives",
+            id.raw
+        );
         return failure(at, len, message);
     }
-    Ok((rest, Name { name: id.name, span: cx.span(at, rest) }))
+    Ok((
+        rest,
+        Name {
+            name: id.name,
+            span: cx.span(at, rest),
+        },
+    ))
 }
 
 /// `assignments = name "=" expr ("," name "=" expr)*` after `where` or `with` (the `keyword`).
@@ -189,7 +261,10 @@ pub(crate) fn assignments<'a>(cx: &Cx<'a>, i: &'a str, keyword: &str) -> PResult
             return expected(cx, rest, &format!("`=` after `{}`", target.name));
         };
         let (rest, value) = expr(cx, rest, "=")?;
-        out.push(Assign { name: target, value });
+        out.push(Assign {
+            name: target,
+            value,
+        });
         match punct(cx, rest, ",") {
             Some((_, next)) => i = next,
             None => return Ok((rest, out)),

@@ -16,13 +16,20 @@ pub struct SyntaxError {
 impl SyntaxError {
     /// An error at `span`.
     pub fn new(span: Span, message: impl Into<String>) -> SyntaxError {
-        SyntaxError { span, message: message.into() }
+        SyntaxError {
+            span,
+            message: message.into(),
+        }
     }
 }
 
 impl fmt::Display for SyntaxError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} (bytes {}..{})", self.message, self.span.start, self.span.end)
+        write!(
+            f,
+            "{} (bytes {}..{})",
+            self.message, self.span.start, self.span.end
+        )
     }
 }
 
@@ -56,7 +63,11 @@ pub(crate) struct PError<'a> {
 
 impl<'a> ParseError<&'a str> for PError<'a> {
     fn from_error_kind(input: &'a str, _kind: ErrorKind) -> Self {
-        PError { at: input, len: 0, message: None }
+        PError {
+            at: input,
+            len: 0,
+            message: None,
+        }
     }
 
     fn append(_input: &'a str, _kind: ErrorKind, other: Self) -> Self {
@@ -81,11 +92,23 @@ pub(crate) type Fail<'a> = nom::Err<PError<'a>>;
 pub(crate) type PResult<'a, T> = nom::IResult<&'a str, T, PError<'a>>;
 
 /// A committed failure at `at`, `len` bytes long, saying `message`.
-pub(crate) fn failure<'a, T>(at: &'a str, len: usize, message: impl Into<String>) -> PResult<'a, T> {
-    Err(nom::Err::Failure(PError { at, len, message: Some(message.into()) }))
+pub(crate) fn failure<'a, T>(
+    at: &'a str,
+    len: usize,
+    message: impl Into<String>,
+) -> PResult<'a, T> {
+    Err(nom::Err::Failure(PError {
+        at,
+        len,
+        message: Some(message.into()),
+    }))
 }
 
 /// A recoverable "does not match here" at `at`.
 pub(crate) fn no_match<'a, T>(at: &'a str) -> PResult<'a, T> {
-    Err(nom::Err::Error(PError { at, len: 0, message: None }))
+    Err(nom::Err::Error(PError {
+        at,
+        len: 0,
+        message: None,
+    }))
 }

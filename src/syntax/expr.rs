@@ -11,6 +11,11 @@ use num_rational::BigRational;
 /// Parses `src` as one expression (surrounding whitespace allowed).
 ///
 /// Spans are byte offsets into `src`.
+///
+/// # Errors
+///
+/// A [`SyntaxError`] saying what was expected where, when `src` is not exactly one
+/// expression or nests deeper than `opts.max_depth`.
 pub fn parse_expr(src: &str, opts: &ParseOptions) -> Result<Expr, SyntaxError> {
     let cx = Cx::new(src, src.len(), opts, false, "the end of the input");
     let parsed = expr(&cx, src, "").and_then(|(rest, e)| {
@@ -23,12 +28,24 @@ pub fn parse_expr(src: &str, opts: &ParseOptions) -> Result<Expr, SyntaxError> {
 /// Parses `src` as a relation or chain of relations, `expr (relop expr)+`.
 ///
 /// Spans are byte offsets into `src`.
+///
+/// # Errors
+///
+/// A [`SyntaxError`] as for [`parse_expr`], also when there is no relation.
 pub fn parse_chain(src: &str, opts: &ParseOptions) -> Result<Chain, SyntaxError> {
     let cx = Cx::new(src, src.len(), opts, false, "the end of the input");
-    let rules = ChainRules { after: "", by: false, where_: false };
+    let rules = ChainRules {
+        after: "",
+        by: false,
+        where_: false,
+    };
     let parsed = chain_or_expr(&cx, src, rules).and_then(|(rest, (first, links))| {
         if links.is_empty() {
-            return expected(&cx, rest, "an operator or a relation (`=`, `!=`, `<`, `<=`, `>`, `>=`, `~=`)");
+            return expected(
+                &cx,
+                rest,
+                "an operator or a relation (`=`, `!=`, `<`, `<=`, `>`, `>=`, `~=`)",
+            );
         }
         let (rest, ()) = end(&cx, rest, "an operator, a relation or the end of the input")?;
         Ok((rest, Chain { first, links }))
@@ -50,7 +67,13 @@ pub(crate) fn expr<'a>(cx: &Cx<'a>, i: &'a str, after: &str) -> PResult<'a, Expr
 pub(crate) type Tree = (Box<Expr>, usize);
 
 /// A node over children of height `below`, unless the tree gets too tall (error at `at`).
-pub(crate) fn node<'a>(cx: &Cx<'a>, at: &'a str, kind: ExprKind, span: Span, below: usize) -> Result<Tree, Fail<'a>> {
+pub(crate) fn node<'a>(
+    cx: &Cx<'a>,
+    at: &'a str,
+    kind: ExprKind,
+    span: Span,
+    below: usize,
+) -> Result<Tree, Fail<'a>> {
     let height = below.saturating_add(1);
     if height > cx.max_height {
         return Err(too_large(cx, at));
@@ -83,14 +106,22 @@ pub(crate) fn no_expression<'a>(cx: &Cx<'a>, i: &'a str, at: &'a str, after: &st
     if at.is_empty() {
         return fail(i, 0, what);
     }
-    fail(at, token_len(at), format!("{what}, found {}", describe(cx, at)))
+    fail(
+        at,
+        token_len(at),
+        format!("{what}, found {}", describe(cx, at)),
+    )
 }
 
 /// A committed failure, as a value.
 #[cold]
 #[inline(never)]
 pub(crate) fn fail(at: &str, len: usize, message: String) -> Fail<'_> {
-    nom::Err::Failure(PError { at, len, message: Some(message) })
+    nom::Err::Failure(PError {
+        at,
+        len,
+        message: Some(message),
+    })
 }
 
 /// `postfixed = primary ("²" | "³")*`.
@@ -103,7 +134,10 @@ pub(crate) fn postfixed<'a>(cx: &Cx<'a>, at: &'a str, depth: usize) -> PResult<'
             _ => return Ok((i, tree)),
         };
         let rest = i.get(c.len_utf8()..).unwrap_or("");
-        let exponent = Expr::new(ExprKind::Num(BigRational::from_integer(power.into())), cx.span(i, rest));
+        let exponent = Expr::new(
+            ExprKind::Num(BigRational::from_integer(power.into())),
+            cx.span(i, rest),
+        );
         let span = tree.0.span.to(exponent.span);
         let kind = ExprKind::Bin(BinOp::Pow, tree.0, Box::new(exponent));
         tree = node(cx, i, kind, span, tree.1)?;
@@ -115,7 +149,12 @@ pub(crate) fn postfixed<'a>(cx: &Cx<'a>, at: &'a str, depth: usize) -> PResult<'
 /// Anything else is a recoverable no-match, so the caller can say what it expected.
 fn primary<'a>(cx: &Cx<'a>, at: &'a str, depth: usize) -> PResult<'a, Tree> {
     match number(at) {
-        Ok((rest, n)) => return Ok((rest, (Box::new(Expr::new(ExprKind::Num(n), cx.span(at, rest))), 1))),
+        Ok((rest, n)) => {
+            return Ok((
+                rest,
+                (Box::new(Expr::new(ExprKind::Num(n), cx.span(at, rest))), 1),
+            ))
+        }
         Err(nom::Err::Error(_)) => {}
         Err(e) => return Err(e),
     }
@@ -153,7 +192,11 @@ fn unclosed<'a>(cx: &Cx<'a>, open: &'a str, at: &'a str) -> Fail<'a> {
     if at.is_empty() {
         fail(open, 1, "unclosed `(`".to_string())
     } else {
-        fail(at, token_len(at), format!("expected `)`, found {}", describe(cx, at)))
+        fail(
+            at,
+            token_len(at),
+            format!("expected `)`, found {}", describe(cx, at)),
+        )
     }
 }
 
@@ -161,7 +204,13 @@ fn unclosed<'a>(cx: &Cx<'a>, open: &'a str, at: &'a str) -> Fail<'a> {
 fn root<'a>(cx: &Cx<'a>, at: &'a str, rest: &'a str, depth: usize) -> PResult<'a, Tree> {
     let (_, deeper) = cx.enter(at, depth)?;
     let (rest, (arg, height)) = match primary(cx, rest, deeper) {
-        Err(nom::Err::Error(_)) => return Err(fail(at, '√'.len_utf8(), "expected `(` after `√`: √(…)".to_string())),
+        Err(nom::Err::Error(_)) => {
+            return Err(fail(
+                at,
+                '√'.len_utf8(),
+                "expected `(` after `√`: √(…)".to_string(),
+            ))
+        }
         other => other?,
     };
     let span = Span::new(cx.pos(at), arg.span.end);
@@ -170,7 +219,13 @@ fn root<'a>(cx: &Cx<'a>, at: &'a str, rest: &'a str, depth: usize) -> PResult<'a
 }
 
 /// `name`: a symbol, `pi`, or a function call when a known function touches its `(`.
-fn name<'a>(cx: &Cx<'a>, at: &'a str, rest: &'a str, id: Ident<'a>, depth: usize) -> PResult<'a, Tree> {
+fn name<'a>(
+    cx: &Cx<'a>,
+    at: &'a str,
+    rest: &'a str,
+    id: Ident<'a>,
+    depth: usize,
+) -> PResult<'a, Tree> {
     if is_reserved(&id.name) {
         return no_match(at);
     }
@@ -183,10 +238,17 @@ fn name<'a>(cx: &Cx<'a>, at: &'a str, rest: &'a str, id: Ident<'a>, depth: usize
         return Err(bare_function(at, rest, id.raw));
     }
     if touches_paren {
-        let message = format!("unknown function {0}; write {0}*(x) or {0} (x) for a product", id.raw);
+        let message = format!(
+            "unknown function {0}; write {0}*(x) or {0} (x) for a product",
+            id.raw
+        );
         return Err(fail(at, len, message));
     }
-    let kind = if id.name == "pi" { ExprKind::Pi } else { ExprKind::Sym(id.name) };
+    let kind = if id.name == "pi" {
+        ExprKind::Pi
+    } else {
+        ExprKind::Sym(id.name)
+    };
     Ok((rest, (Box::new(Expr::new(kind, cx.span(at, rest))), 1)))
 }
 
@@ -199,7 +261,11 @@ fn bare_function<'a>(at: &'a str, rest: &'a str, raw: &str) -> Fail<'a> {
     } else {
         String::new()
     };
-    fail(at, raw.len(), format!("`{raw}` needs its argument in parentheses: {raw}(…){hint}"))
+    fail(
+        at,
+        raw.len(),
+        format!("`{raw}` needs its argument in parentheses: {raw}(…){hint}"),
+    )
 }
 
 /// `call = func "(" expr ("," expr)* ")"`, with the number of arguments checked.
@@ -239,7 +305,11 @@ fn bad_argument_list<'a>(cx: &Cx<'a>, f: Func, open: &'a str, next: &'a str) -> 
     if next.is_empty() {
         return fail(open, 1, "unclosed `(`".to_string());
     }
-    let message = format!("expected `,` or `)` in the arguments of `{}`, found {}", f.name(), describe(cx, next));
+    let message = format!(
+        "expected `,` or `)` in the arguments of `{}`, found {}",
+        f.name(),
+        describe(cx, next)
+    );
     fail(next, token_len(next), message)
 }
 

@@ -7,9 +7,13 @@ use super::error::{ParseOptions, SyntaxError};
 use super::lex::{end, ident, token_len, Cx};
 use super::stmt::{statement, KEYWORDS};
 
-/// Parses a whole derivation file; the first syntax error is returned.
+/// Parses a whole derivation file.
 ///
 /// Spans are byte offsets into `src`.
+///
+/// # Errors
+///
+/// The first [`SyntaxError`] of the file.
 pub fn parse_file(src: &str, opts: &ParseOptions) -> Result<File, SyntaxError> {
     let mut items = Vec::new();
     // The statement being read: the offset of its keyword and of the end of its last line so far.
@@ -36,11 +40,18 @@ pub fn parse_file(src: &str, opts: &ParseOptions) -> Result<File, SyntaxError> {
         if let Some(hashes) = line.strip_prefix('#') {
             items.push(heading(hashes, Span::new(start, line_end)));
         } else if let Some(text) = line.strip_prefix('>') {
-            items.push(prose(src, opts, start.saturating_add(1), text, Span::new(start, line_end))?);
+            items.push(prose(
+                src,
+                opts,
+                start.saturating_add(1),
+                text,
+                Span::new(start, line_end),
+            )?);
         } else if matches!(ident(line), Ok((_, id)) if KEYWORDS.contains(&id.raw)) {
             open = Some((start, line_end));
         } else {
-            let message = "expected a statement (symbols, time, unknowns, units, body, let, given, \
+            let message =
+                "expected a statement (symbols, time, unknowns, units, body, let, given, \
                  constraint, claim, use), a heading `#`, prose `>` or a comment `%`";
             let span = Span::new(start, start.saturating_add(token_len(line)));
             return Err(SyntaxError::new(span, message));
@@ -63,7 +74,11 @@ fn lines(src: &str) -> impl Iterator<Item = (usize, &str)> {
 }
 
 /// Parses the statement at `start..end` of `src`.
-fn stmt(src: &str, opts: &ParseOptions, (start, end): (usize, usize)) -> Result<super::ast::Stmt, SyntaxError> {
+fn stmt(
+    src: &str,
+    opts: &ParseOptions,
+    (start, end): (usize, usize),
+) -> Result<super::ast::Stmt, SyntaxError> {
     let cx = Cx::new(src, end, opts, true, "the end of the statement");
     statement(&cx, src.get(start..end).unwrap_or(""))
 }
@@ -71,7 +86,7 @@ fn stmt(src: &str, opts: &ParseOptions, (start, end): (usize, usize)) -> Result<
 /// The error for an indented line (at `span`) with no statement above it to continue.
 fn orphan(span: Span, previous: Option<&Item>) -> SyntaxError {
     let message = match previous {
-        Some(Item::Heading { .. }) | Some(Item::Prose { .. }) => {
+        Some(Item::Heading { .. } | Item::Prose { .. }) => {
             "an indented line continues a statement, but the line above is a heading or prose; \
              start statements at the beginning of the line"
         }
@@ -87,11 +102,21 @@ fn orphan(span: Span, previous: Option<&Item>) -> SyntaxError {
 fn heading(hashes: &str, span: Span) -> Item {
     let text = hashes.trim_start_matches('#');
     let level = hashes.len().saturating_sub(text.len()).saturating_add(1);
-    Item::Heading { level, text: text.trim().to_string(), span }
+    Item::Heading {
+        level,
+        text: text.trim().to_string(),
+        span,
+    }
 }
 
 /// `prose = ">" (text | "$" math "$")*`; `text` follows the `>` and starts at byte `start`.
-fn prose(src: &str, opts: &ParseOptions, start: usize, text: &str, span: Span) -> Result<Item, SyntaxError> {
+fn prose(
+    src: &str,
+    opts: &ParseOptions,
+    start: usize,
+    text: &str,
+    span: Span,
+) -> Result<Item, SyntaxError> {
     let body = text.trim();
     let body_start = start.saturating_add(text.len().saturating_sub(text.trim_start().len()));
     let piece = |from: usize, to: usize| body.get(from..to).unwrap_or("");
@@ -104,9 +129,18 @@ fn prose(src: &str, opts: &ParseOptions, start: usize, text: &str, span: Span) -
         }
         let Some(close) = dollars.next() else {
             let at = body_start.saturating_add(open);
-            return Err(SyntaxError::new(Span::new(at, at.saturating_add(1)), "unclosed `$`"));
+            return Err(SyntaxError::new(
+                Span::new(at, at.saturating_add(1)),
+                "unclosed `$`",
+            ));
         };
-        let cx = Cx::new(src, body_start.saturating_add(close), opts, false, "the closing `$`");
+        let cx = Cx::new(
+            src,
+            body_start.saturating_add(close),
+            opts,
+            false,
+            "the closing `$`",
+        );
         parts.push(math(&cx, piece(open.saturating_add(1), close))?);
         text_from = close.saturating_add(1);
     }
@@ -118,11 +152,19 @@ fn prose(src: &str, opts: &ParseOptions, start: usize, text: &str, span: Span) -
 
 /// `math = expr link*` between `$`s: a chain when it holds a relation, else an expression.
 fn math<'a>(cx: &Cx<'a>, src: &'a str) -> Result<ProsePart, SyntaxError> {
-    let rules = ChainRules { after: "$", by: false, where_: false };
+    let rules = ChainRules {
+        after: "$",
+        by: false,
+        where_: false,
+    };
     let parsed = chain_or_expr(cx, src, rules).and_then(|(rest, parts)| {
         end(cx, rest, "an operator, a relation or the closing `$`")?;
         Ok((rest, parts))
     });
     let (_, (first, links)) = parsed.map_err(|e| cx.error(e))?;
-    Ok(if links.is_empty() { ProsePart::MathExpr(first) } else { ProsePart::Math(Chain { first, links }) })
+    Ok(if links.is_empty() {
+        ProsePart::MathExpr(first)
+    } else {
+        ProsePart::Math(Chain { first, links })
+    })
 }

@@ -16,6 +16,9 @@ pub(crate) const RESERVED: [&str; 5] = ["by", "where", "with", "from", "to"];
 /// The largest power of ten a number literal may carry (`1e10000`).
 const MAX_EXPONENT: i64 = 10_000;
 
+/// The most digits a number literal may have.
+const MAX_DIGITS: usize = 10_000;
+
 /// What every parser needs to know besides its input.
 ///
 /// Every parser's input is a suffix of one region of `base` (an expression, a statement,
@@ -38,9 +41,22 @@ pub(crate) struct Cx<'a> {
 
 impl<'a> Cx<'a> {
     /// A context for parsing the region of `base` that ends at byte `end`.
-    pub fn new(base: &'a str, end: usize, opts: &ParseOptions, comments: bool, end_name: &'static str) -> Cx<'a> {
+    pub fn new(
+        base: &'a str,
+        end: usize,
+        opts: &ParseOptions,
+        comments: bool,
+        end_name: &'static str,
+    ) -> Cx<'a> {
         let max_height = opts.max_depth.saturating_mul(5).max(1000);
-        Cx { base, end, max_depth: opts.max_depth, max_height, comments, end_name }
+        Cx {
+            base,
+            end,
+            max_depth: opts.max_depth,
+            max_height,
+            comments,
+            end_name,
+        }
     }
 
     /// The byte offset in `base` of `i`, a suffix of the region.
@@ -64,12 +80,15 @@ impl<'a> Cx<'a> {
         match e {
             nom::Err::Error(e) | nom::Err::Failure(e) => {
                 let span = self.span_len(e.at, e.len);
-                let message = e.message.unwrap_or_else(|| format!("unexpected {}", describe(self, e.at)));
+                let message = e
+                    .message
+                    .unwrap_or_else(|| format!("unexpected {}", describe(self, e.at)));
                 SyntaxError::new(span, message)
             }
-            nom::Err::Incomplete(_) => {
-                SyntaxError::new(Span::new(self.base.len(), self.base.len()), "unexpected end of input")
-            }
+            nom::Err::Incomplete(_) => SyntaxError::new(
+                Span::new(self.base.len(), self.base.len()),
+                "unexpected end of input",
+            ),
         }
     }
 
@@ -90,7 +109,10 @@ pub(crate) fn ws<'a>(cx: &Cx<'a>, mut i: &'a str) -> &'a str {
         i = i.trim_start();
         match i.strip_prefix('%') {
             Some(comment) if cx.comments => {
-                i = comment.find('\n').and_then(|n| comment.get(n..)).unwrap_or("");
+                i = comment
+                    .find('\n')
+                    .and_then(|n| comment.get(n..))
+                    .unwrap_or("");
             }
             _ => return i,
         }
@@ -184,28 +206,52 @@ pub(crate) fn is_reserved(name: &str) -> bool {
 /// An `e` belongs to the number only when digits follow it, so `2e` is `2·e`.
 pub(crate) fn number(i: &str) -> PResult<'_, BigRational> {
     let mantissa = (digit0, opt(preceded(char('.'), digit1)));
-    let exponent = opt(preceded(one_of("eE"), recognize(pair(opt(one_of("+-")), digit1))));
+    let exponent = opt(preceded(
+        one_of("eE"),
+        recognize(pair(opt(one_of("+-")), digit1)),
+    ));
     let (rest, ((whole, frac), exp)) = (mantissa, exponent).parse(i)?;
     if whole.is_empty() && frac.is_none() {
         return no_match(i);
     }
     let frac = frac.unwrap_or("");
     let len = i.len().saturating_sub(rest.len());
-    let too_big = || failure(i, len, format!("number out of range: exponents go up to {MAX_EXPONENT}"));
+    if whole.len().saturating_add(frac.len()) > MAX_DIGITS {
+        return failure(
+            i,
+            len,
+            format!("number too long: at most {MAX_DIGITS} digits"),
+        );
+    }
+    let too_big = || {
+        failure(
+            i,
+            len,
+            format!("number out of range: powers of ten go up to 1e{MAX_EXPONENT}"),
+        )
+    };
     let exp: i64 = match exp.map(|e| e.trim_start_matches('+').parse::<i64>()) {
         None => 0,
         Some(Ok(e)) if e.abs() <= MAX_EXPONENT => e,
         Some(_) => return too_big(),
     };
     let frac_len = i64::try_from(frac.len()).unwrap_or(i64::MAX);
-    let Some(scale) = exp.checked_sub(frac_len).filter(|s| s.abs() <= MAX_EXPONENT) else {
+    let Some(scale) = exp
+        .checked_sub(frac_len)
+        .filter(|s| s.abs() <= MAX_EXPONENT)
+    else {
         return too_big();
     };
     let digits: BigInt = match format!("{whole}{frac}").parse() {
         Ok(d) => d,
         Err(_) => return no_match(i),
     };
-    let ten_to = |n: i64| num_traits::pow(BigInt::from(10u8), usize::try_from(n.unsigned_abs()).unwrap_or(0));
+    let ten_to = |n: i64| {
+        num_traits::pow(
+            BigInt::from(10u8),
+            usize::try_from(n.unsigned_abs()).unwrap_or(0),
+        )
+    };
     let value = if scale >= 0 {
         BigRational::from_integer(digits * ten_to(scale))
     } else {
@@ -234,7 +280,10 @@ pub(crate) fn token_len(i: &str) -> usize {
     if let Ok((rest, _)) = ident(i) {
         return i.len().saturating_sub(rest.len());
     }
-    let digits = i.bytes().take_while(|b| b.is_ascii_digit() || *b == b'.').count();
+    let digits = i
+        .bytes()
+        .take_while(|b| b.is_ascii_digit() || *b == b'.')
+        .count();
     if digits > 0 {
         return digits;
     }
@@ -256,7 +305,11 @@ pub(crate) fn describe(cx: &Cx<'_>, i: &str) -> String {
 pub(crate) fn expected<'a, T>(cx: &Cx<'a>, i: &'a str, what: &str) -> PResult<'a, T> {
     let at = ws(cx, i);
     let at_or_end = if at.is_empty() { i } else { at };
-    failure(at_or_end, token_len(at), format!("expected {what}, found {}", describe(cx, at)))
+    failure(
+        at_or_end,
+        token_len(at),
+        format!("expected {what}, found {}", describe(cx, at)),
+    )
 }
 
 /// Succeeds when only whitespace (and comments) remain; otherwise says what was `wanted`.
@@ -268,5 +321,5 @@ pub(crate) fn end<'a>(cx: &Cx<'a>, i: &'a str, wanted: &str) -> PResult<'a, ()> 
     if at.starts_with(')') {
         return failure(at, 1, "unmatched `)`");
     }
-    expected(cx, at, wanted)
+    expected(cx, i, wanted)
 }

@@ -61,7 +61,8 @@ const INFIX: [(&str, BinOp); 9] = [
 const SIGNS: [(&str, bool); 3] = [("-", true), ("−", true), ("+", false)];
 
 /// The operator after whitespace: the operator, its text, the input at it and after it.
-/// A factor that could start a product (never `-` or `+`) is juxtaposition, consuming nothing.
+/// A factor that could start a product (never `-` or `+`) on the same line is
+/// juxtaposition, consuming nothing; a line break never multiplies.
 fn infix<'a>(cx: &Cx<'a>, i: &'a str) -> Option<(Op, &'static str, &'a str, &'a str)> {
     let at = ws(cx, i);
     for (text, op) in INFIX {
@@ -69,12 +70,17 @@ fn infix<'a>(cx: &Cx<'a>, i: &'a str) -> Option<(Op, &'static str, &'a str, &'a 
             return Some((Op::Infix(op), text, at, rest));
         }
     }
-    starts_factor(at).then_some((Op::Juxt, "", at, at))
+    let skipped = i.get(..i.len().saturating_sub(at.len())).unwrap_or("");
+    let same_line = !skipped.contains('\n');
+    (same_line && starts_factor(at)).then_some((Op::Juxt, "", at, at))
 }
 
 /// A sign at `at`: the operator, its text, and the input after it.
 fn sign(at: &str) -> Option<(Op, &'static str, &str)> {
-    SIGNS.iter().find_map(|&(text, negate)| at.strip_prefix(text).map(|rest| (Op::Sign(negate), text, rest)))
+    SIGNS.iter().find_map(|&(text, negate)| {
+        at.strip_prefix(text)
+            .map(|rest| (Op::Sign(negate), text, rest))
+    })
 }
 
 /// Whether `i` starts a primary: a number, a name that is not a reserved word, `(` or `√`.
@@ -170,5 +176,9 @@ fn apply<'a>(cx: &Cx<'a>, operands: &mut Vec<Tree>, op: Op, at: &'a str) -> Resu
 #[cold]
 #[inline(never)]
 fn internal(at: &str) -> Fail<'_> {
-    fail(at, 0, "internal error: the expression parser lost an operand".to_string())
+    fail(
+        at,
+        0,
+        "internal error: the expression parser lost an operand".to_string(),
+    )
 }

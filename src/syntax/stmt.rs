@@ -9,8 +9,18 @@ use super::lex::{end, expected, hspace, ident, keyword, number, punct, token_len
 use num_traits::Zero;
 
 /// The words that start a statement.
-pub(crate) const KEYWORDS: [&str; 10] =
-    ["symbols", "time", "unknowns", "units", "body", "let", "given", "constraint", "claim", "use"];
+pub(crate) const KEYWORDS: [&str; 10] = [
+    "symbols",
+    "time",
+    "unknowns",
+    "units",
+    "body",
+    "let",
+    "given",
+    "constraint",
+    "claim",
+    "use",
+];
 
 /// Parses the statement in `region`, a subslice of `cx.base` that starts with its keyword.
 pub(crate) fn statement<'a>(cx: &Cx<'a>, region: &'a str) -> Result<Stmt, SyntaxError> {
@@ -26,14 +36,22 @@ fn stmt<'a>(cx: &Cx<'a>, region: &'a str) -> PResult<'a, Stmt> {
     let (rest, kind) = match kw {
         "symbols" => symbols(cx, i)?,
         "time" => names(cx, i, "time", false).map(|(r, names)| (r, StmtKind::Time { names }))?,
-        "unknowns" => names(cx, i, "unknowns", true).map(|(r, names)| (r, StmtKind::Unknowns { names }))?,
+        "unknowns" => {
+            names(cx, i, "unknowns", true).map(|(r, names)| (r, StmtKind::Unknowns { names }))?
+        }
         "units" => units(cx, i)?,
         "body" => body(cx, i)?,
         "let" => let_(cx, i)?,
         "use" => use_(cx, i)?,
         _ => fact(cx, i, kw)?,
     };
-    Ok((rest, Stmt { kind, span: cx.span(region, rest) }))
+    Ok((
+        rest,
+        Stmt {
+            kind,
+            span: cx.span(region, rest),
+        },
+    ))
 }
 
 /// `names = name ([","] name)*` after `symbols`, `time` or `unknowns` (the `kw`).
@@ -55,7 +73,11 @@ fn names<'a>(cx: &Cx<'a>, i: &'a str, kw: &str, primes: bool) -> PResult<'a, Vec
 fn symbols<'a>(cx: &Cx<'a>, i: &'a str) -> PResult<'a, StmtKind> {
     let (i, names) = names(cx, i, "symbols", false)?;
     let (i, sign) = sign(cx, i)?;
-    end(cx, i, "a symbol name, a sign (`> 0`, `>= 0`, `!= 0`) or the end of the statement")?;
+    end(
+        cx,
+        i,
+        "a symbol name, a sign (`> 0`, `>= 0`, `!= 0`) or the end of the statement",
+    )?;
     Ok((i, StmtKind::Symbols { names, sign }))
 }
 
@@ -68,13 +90,20 @@ fn sign<'a>(cx: &Cx<'a>, i: &'a str) -> PResult<'a, SignDecl> {
         ("≠", SignDecl::Nonzero),
         (">", SignDecl::Positive),
     ];
-    let Some((op, sign, rest)) = signs.iter().find_map(|&(op, s)| punct(cx, i, op).map(|(_, r)| (op, s, r))) else {
+    let Some((op, sign, rest)) = signs
+        .iter()
+        .find_map(|&(op, s)| punct(cx, i, op).map(|(_, r)| (op, s, r)))
+    else {
         return Ok((i, SignDecl::Any));
     };
     let at = ws(cx, rest);
     match number(at) {
         Ok((rest, n)) if n.is_zero() => Ok((rest, sign)),
-        _ => expected(cx, at, &format!("`0` after `{op}`: signs are `> 0`, `>= 0` or `!= 0`")),
+        _ => expected(
+            cx,
+            rest,
+            &format!("`0` after `{op}`: signs are `> 0`, `>= 0` or `!= 0`"),
+        ),
     }
 }
 
@@ -87,19 +116,35 @@ fn units<'a>(cx: &Cx<'a>, i: &'a str) -> PResult<'a, StmtKind> {
     loop {
         let (rest, n) = name(cx, i, what, false)?;
         let Some((_, rest)) = punct(cx, rest, ":") else {
-            return expected(cx, rest, &format!("`:` after `{}`, as in `units m: kg`", n.name));
+            return expected(
+                cx,
+                rest,
+                &format!("`:` after `{}`, as in `units m: kg`", n.name),
+            );
         };
         let at = hspace(rest);
         let unit = at.get(..unit_len(cx, at)).unwrap_or("").trim_end();
         if unit.is_empty() {
-            return expected(cx, at, &format!("a unit after `{}:`, such as `kg` or `m/s^2`", n.name));
+            return expected(
+                cx,
+                at,
+                &format!("a unit after `{}:`, such as `kg` or `m/s^2`", n.name),
+            );
         }
         let after = at.get(unit.len()..).unwrap_or("");
-        decls.push(UnitDecl { name: n, unit: unit.to_string(), unit_span: cx.span(at, after) });
+        decls.push(UnitDecl {
+            name: n,
+            unit: unit.to_string(),
+            unit_span: cx.span(at, after),
+        });
         match punct(cx, after, ",") {
             Some((_, next)) => (i, what) = (next, "a symbol name after `,`"),
             None => {
-                end(cx, after, "`,` and the next `name: unit`, or the end of the statement")?;
+                end(
+                    cx,
+                    after,
+                    "`,` and the next `name: unit`, or the end of the statement",
+                )?;
                 return Ok((after, StmtKind::Units { decls }));
             }
         }
@@ -131,7 +176,11 @@ fn body<'a>(cx: &Cx<'a>, i: &'a str) -> PResult<'a, StmtKind> {
     } else if let Some((_, r)) = keyword(cx, rest, "mass") {
         abstract_(cx, r)?
     } else {
-        return expected(cx, rest, &format!("`dm = …` or `mass …` after `body {}:`", name.name));
+        return expected(
+            cx,
+            rest,
+            &format!("`dm = …` or `mass …` after `body {}:`", name.name),
+        );
     };
     Ok((rest, StmtKind::Body { name, def }))
 }
@@ -144,13 +193,26 @@ fn concrete<'a>(cx: &Cx<'a>, i: &'a str) -> PResult<'a, BodyDef> {
     let (mut i, dm) = expr(cx, i, "=")?;
     let mut ranges = Vec::new();
     while let Some((_, rest)) = punct(cx, i, ",") {
-        let (rest, var) = name(cx, rest, "a coordinate after `,`, as in `y from -L/2 to L/2`", false)?;
+        let (rest, var) = name(
+            cx,
+            rest,
+            "a coordinate after `,`, as in `y from -L/2 to L/2`",
+            false,
+        )?;
         let Some((_, rest)) = keyword(cx, rest, "from") else {
-            return expected(cx, rest, &format!("`from` after the coordinate `{}`", var.name));
+            return expected(
+                cx,
+                rest,
+                &format!("`from` after the coordinate `{}`", var.name),
+            );
         };
         let (rest, from) = expr(cx, rest, "from")?;
         let Some((_, rest)) = keyword(cx, rest, "to") else {
-            return expected(cx, rest, &format!("an operator or `to` in the range of `{}`", var.name));
+            return expected(
+                cx,
+                rest,
+                &format!("an operator or `to` in the range of `{}`", var.name),
+            );
         };
         let (rest, to) = expr(cx, rest, "to")?;
         ranges.push(Range { var, from, to });
@@ -160,7 +222,11 @@ fn concrete<'a>(cx: &Cx<'a>, i: &'a str) -> PResult<'a, BodyDef> {
         let what = "an operator, or `,` and the range of a coordinate as in `dm = m/L dy, y from -L/2 to L/2`";
         return expected(cx, i, what);
     }
-    end(cx, i, "an operator, `,` and another coordinate range, or the end of the statement")?;
+    end(
+        cx,
+        i,
+        "an operator, `,` and another coordinate range, or the end of the statement",
+    )?;
     Ok((i, BodyDef::Concrete { dm, ranges }))
 }
 
@@ -171,7 +237,11 @@ fn abstract_<'a>(cx: &Cx<'a>, i: &'a str) -> PResult<'a, BodyDef> {
         return expected(cx, i, "an operator, or `, coordinates …` after the mass");
     };
     let Some((_, i)) = keyword(cx, i, "coordinates") else {
-        return expected(cx, i, "`coordinates` and the body's coordinates, as in `coordinates x y`");
+        return expected(
+            cx,
+            i,
+            "`coordinates` and the body's coordinates, as in `coordinates x y`",
+        );
     };
     let (mut i, first) = name(cx, i, "a coordinate name after `coordinates`", false)?;
     let mut coords = vec![first];
@@ -182,13 +252,26 @@ fn abstract_<'a>(cx: &Cx<'a>, i: &'a str) -> PResult<'a, BodyDef> {
     }
     let mut centred = false;
     if let Some((_, rest)) = punct(cx, i, ",") {
-        let Some((_, rest)) = keyword(cx, rest, "centred").or_else(|| keyword(cx, rest, "centered")) else {
+        let Some((_, rest)) =
+            keyword(cx, rest, "centred").or_else(|| keyword(cx, rest, "centered"))
+        else {
             return expected(cx, rest, "`centred` after `,`");
         };
         (i, centred) = (rest, true);
     }
-    end(cx, i, "a coordinate name, `, centred` or the end of the statement")?;
-    Ok((i, BodyDef::Abstract { mass, coords, centred }))
+    end(
+        cx,
+        i,
+        "a coordinate name, `, centred` or the end of the statement",
+    )?;
+    Ok((
+        i,
+        BodyDef::Abstract {
+            mass,
+            coords,
+            centred,
+        },
+    ))
 }
 
 /// `let = "let" name "=" expr`.
@@ -210,16 +293,31 @@ fn fact<'a>(cx: &Cx<'a>, i: &'a str, kw: &'a str) -> PResult<'a, StmtKind> {
         Err(nom::Err::Error(_)) => (i, None),
         Err(e) => return Err(e),
     };
-    let after = label.as_ref().and_then(|l| cx.base.get(l.span.start..l.span.end)).unwrap_or(kw);
+    let after = label
+        .as_ref()
+        .and_then(|l| cx.base.get(l.span.start..l.span.end))
+        .unwrap_or(kw);
     let claim = kw == "claim";
-    let rules = ChainRules { after, by: true, where_: claim };
+    let rules = ChainRules {
+        after,
+        by: true,
+        where_: claim,
+    };
     let (i, (first, links)) = chain_or_expr(cx, i, rules)?;
     if links.is_empty() {
-        return expected(cx, i, "an operator or a relation (`=`, `!=`, `<`, `<=`, `>`, `>=`, `~=`)");
+        return expected(
+            cx,
+            i,
+            "an operator or a relation (`=`, `!=`, `<`, `<=`, `>`, `>=`, `~=`)",
+        );
     }
     let chain = Chain { first, links };
     if !claim {
-        end(cx, i, "an operator, a relation, `by` or the end of the statement")?;
+        end(
+            cx,
+            i,
+            "an operator, a relation, `by` or the end of the statement",
+        )?;
         return Ok((i, given_or_constraint(kw, label, chain)));
     }
     let (i, where_) = match keyword(cx, i, "where") {
@@ -232,7 +330,14 @@ fn fact<'a>(cx: &Cx<'a>, i: &'a str, kw: &'a str) -> PResult<'a, StmtKind> {
         "an operator, `,` and another substitution, or the end of the statement"
     };
     end(cx, i, wanted)?;
-    Ok((i, StmtKind::Claim { label, chain, where_ }))
+    Ok((
+        i,
+        StmtKind::Claim {
+            label,
+            chain,
+            where_,
+        },
+    ))
 }
 
 /// The node of a `given` or a `constraint`.
@@ -264,14 +369,26 @@ fn use_<'a>(cx: &Cx<'a>, i: &'a str) -> PResult<'a, StmtKind> {
         "an operator, `,` and another substitution, or the end of the statement"
     };
     end(cx, i, wanted)?;
-    Ok((i, StmtKind::Use { labels, path, path_span, with }))
+    Ok((
+        i,
+        StmtKind::Use {
+            labels,
+            path,
+            path_span,
+            with,
+        },
+    ))
 }
 
 /// `string = '"' [^"\n]+ '"'`: the path of a `use`, with the span of the quoted text.
 fn string<'a>(cx: &Cx<'a>, i: &'a str) -> PResult<'a, (String, super::ast::Span)> {
     let at = ws(cx, i);
     let Some(inner) = at.strip_prefix('"') else {
-        return expected(cx, at, "a quoted path after `from`, as in `from \"rod.deriv\"`");
+        return expected(
+            cx,
+            i,
+            "a quoted path after `from`, as in `from \"rod.deriv\"`",
+        );
     };
     let len = inner.find(['"', '\n']).unwrap_or(inner.len());
     let path = inner.get(..len).unwrap_or("");
@@ -279,7 +396,11 @@ fn string<'a>(cx: &Cx<'a>, i: &'a str) -> PResult<'a, (String, super::ast::Span)
         return failure(at, 1, "unclosed `\"`");
     };
     if path.trim().is_empty() {
-        return failure(at, token_len(at).saturating_add(1), "expected a file path between the quotes");
+        return failure(
+            at,
+            token_len(at).saturating_add(1),
+            "expected a file path between the quotes",
+        );
     }
     Ok((rest, (path.to_string(), cx.span(at, rest))))
 }

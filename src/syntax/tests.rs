@@ -2,6 +2,7 @@
 
 mod expr_tests;
 mod file_tests;
+mod prop_tests;
 
 use super::ast::{By, Chain, Expr, ExprKind, Span};
 use super::{parse_chain, parse_expr, ParseOptions, SyntaxError};
@@ -107,8 +108,14 @@ pub(crate) fn check_err(src: &str, message: &str, span: &str) {
 #[track_caller]
 pub(crate) fn assert_err(src: &str, e: &SyntaxError, message: &str, span: &str) {
     let shown = format!("{}..{}", e.span.start, e.span.end);
-    let text = src.get(e.span.start..e.span.end).unwrap_or("<not a char boundary>");
-    assert_eq!((e.message.as_str(), shown.as_str()), (message, span), "input {src:?}, error at {text:?}");
+    let text = src
+        .get(e.span.start..e.span.end)
+        .unwrap_or("<not a char boundary>");
+    assert_eq!(
+        (e.message.as_str(), shown.as_str()),
+        (message, span),
+        "input {src:?}, error at {text:?}"
+    );
 }
 
 /// The text of `src` at `span`.

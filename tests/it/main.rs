@@ -6,3 +6,4 @@ mod cli;
 mod equiv;
 mod normal;
 mod props;
+mod workloads;

@@ -41,6 +41,12 @@ fn juxtaposition() {
     check("-a b", "(* (- a) b)");
     check("a b^2 c", "(* (* a (^ b 2)) c)");
     check("x_1 y_2", "(* x_1 y_2)");
+    check("a\n + b", "(+ a b)");
+    check_err(
+        "a\n b",
+        "expected an operator or the end of the expression, found `b`",
+        "3..4",
+    );
 }
 
 #[test]
@@ -58,7 +64,9 @@ fn numbers() {
     check("007", "7");
     check("2.5m", "(* 5/2 m)");
     match expr("0.71").map(|e| e.kind) {
-        Ok(ExprKind::Num(n)) => assert_eq!(n, num_rational::BigRational::new(71.into(), 100.into())),
+        Ok(ExprKind::Num(n)) => {
+            assert_eq!(n, num_rational::BigRational::new(71.into(), 100.into()))
+        }
         other => panic!("{other:?}"),
     }
 }
@@ -89,12 +97,18 @@ fn names_and_unicode() {
 fn calls() {
     check("sin(beta)", "(call sin beta)");
     check("sqrt(x)^2", "(^ (call sqrt x) 2)");
-    check("int(y^2 m/L, y, -L/2, L/2)", "(call int (/ (* (^ y 2) m) L) y (/ (- L) 2) (/ L 2))");
+    check(
+        "int(y^2 m/L, y, -L/2, L/2)",
+        "(call int (/ (* (^ y 2) m) L) y (/ (- L) 2) (/ L 2))",
+    );
     check("int(y^2, rod)", "(call int (^ y 2) rod)");
     check("diff(x, t, 2)", "(call diff x t 2)");
     check("eval(F, x, 0, L)", "(call eval F x 0 L)");
     check("subs(f, x, 2 a)", "(call subs f x (* 2 a))");
-    check("exp(-x) ln(abs(x))", "(* (call exp (- x)) (call ln (call abs x)))");
+    check(
+        "exp(-x) ln(abs(x))",
+        "(* (call exp (- x)) (call ln (call abs x)))",
+    );
     check("diff(int(f, x), x)", "(call diff (call int f x) x)");
     check("sin(a)cos(b)", "(* (call sin a) (call cos b))");
 }
@@ -117,51 +131,146 @@ fn chain_errors() {
     assert_err(src, &e, "expected an operator or a relation (`=`, `!=`, `<`, `<=`, `>`, `>=`, `~=`), found the end of the input", "5..5");
     let src = "a = ";
     let e = parse_chain(src, &opts).expect_err("no rhs");
-    assert_err(src, &e, "expected an expression after `=`", "4..4");
+    assert_err(src, &e, "expected an expression after `=`", "3..3");
     let src = "a = b by [x]";
     let e = parse_chain(src, &opts).expect_err("no by in plain chains");
-    assert_err(src, &e, "expected an operator, a relation or the end of the input, found `by`", "6..8");
+    assert_err(
+        src,
+        &e,
+        "expected an operator, a relation or the end of the input, found `by`",
+        "6..8",
+    );
 }
 
 #[test]
 fn errors() {
     check_err("a +", "expected an expression after `+`", "3..3");
-    check_err("a + * b", "expected an expression after `+`, found `*`", "4..5");
+    check_err(
+        "a + * b",
+        "expected an expression after `+`, found `*`",
+        "4..5",
+    );
     check_err("", "expected an expression", "0..0");
-    check_err("  ", "expected an expression", "2..2");
+    check_err("  ", "expected an expression", "0..0");
     check_err("(a + b", "unclosed `(`", "0..1");
     check_err("(a + b]", "expected `)`, found `]`", "6..7");
     check_err("a + b)", "unmatched `)`", "5..6");
-    check_err("f(x)", "unknown function f; write f*(x) or f (x) for a product", "0..1");
-    check_err("2 k_G(x)", "unknown function k_G; write k_G*(x) or k_G (x) for a product", "2..5");
-    check_err("sin x", "`sin` needs its argument in parentheses: sin(…)", "0..3");
-    check_err("tan (x)", "`tan` needs its argument in parentheses: tan(…)", "0..3");
+    check_err(
+        "f(x)",
+        "unknown function f; write f*(x) or f (x) for a product",
+        "0..1",
+    );
+    check_err(
+        "2 k_G(x)",
+        "unknown function k_G; write k_G*(x) or k_G (x) for a product",
+        "2..5",
+    );
+    check_err(
+        "sin x",
+        "`sin` needs its argument in parentheses: sin(…)",
+        "0..3",
+    );
+    check_err(
+        "tan (x)",
+        "`tan` needs its argument in parentheses: tan(…)",
+        "0..3",
+    );
     check_err(
         "sin^2(x)",
         "`sin` needs its argument in parentheses: sin(…); write sin(x)^2 for a power of sin",
         "0..3",
     );
     check_err("sin(a, b)", "`sin` takes 1 argument, found 2", "0..9");
-    check_err("1 + int(f, x, a)", "`int` takes 2 or 4 arguments: int(f, x), int(f, B) or int(f, x, a, b), found 3", "4..16");
-    check_err("diff(f)", "`diff` takes 2 or 3 arguments: diff(f, x) or diff(f, x, n), found 1", "0..7");
-    check_err("eval(F, x, a)", "`eval` takes 4 arguments: eval(F, x, a, b), found 3", "0..13");
-    check_err("subs(f, x)", "`subs` takes 3 arguments: subs(f, x, v), found 2", "0..10");
-    check_err("sin()", "expected an expression after `(`, found `)`", "4..5");
-    check_err("int(f, )", "expected an expression after `,`, found `)`", "7..8");
+    check_err(
+        "1 + int(f, x, a)",
+        "`int` takes 2 or 4 arguments: int(f, x), int(f, B) or int(f, x, a, b), found 3",
+        "4..16",
+    );
+    check_err(
+        "diff(f)",
+        "`diff` takes 2 or 3 arguments: diff(f, x) or diff(f, x, n), found 1",
+        "0..7",
+    );
+    check_err(
+        "eval(F, x, a)",
+        "`eval` takes 4 arguments: eval(F, x, a, b), found 3",
+        "0..13",
+    );
+    check_err(
+        "subs(f, x)",
+        "`subs` takes 3 arguments: subs(f, x, v), found 2",
+        "0..10",
+    );
+    check_err(
+        "sin()",
+        "expected an expression after `(`, found `)`",
+        "4..5",
+    );
+    check_err(
+        "int(f, )",
+        "expected an expression after `,`, found `)`",
+        "7..8",
+    );
     check_err("int(f, x", "unclosed `(`", "3..4");
-    check_err("int(f x]", "expected `,` or `)` in the arguments of `int`, found `]`", "7..8");
-    check_err("a by b", "expected an operator or the end of the expression, found `by`", "2..4");
-    check_err("x = 1", "expected an operator or the end of the expression, found `=`", "2..3");
+    check_err(
+        "int(f x]",
+        "expected `,` or `)` in the arguments of `int`, found `]`",
+        "7..8",
+    );
+    check_err(
+        "a by b",
+        "expected an operator or the end of the expression, found `by`",
+        "2..4",
+    );
+    check_err(
+        "x = 1",
+        "expected an operator or the end of the expression, found `=`",
+        "2..3",
+    );
     check_err("to", "expected an expression, found `to`", "0..2");
-    check_err("2.", "expected an operator or the end of the expression, found `.`", "1..2");
+    check_err(
+        "2.",
+        "expected an operator or the end of the expression, found `.`",
+        "1..2",
+    );
     check_err("x^", "expected an expression after `^`", "2..2");
     check_err("-", "expected an expression after `-`", "1..1");
     check_err("√", "expected `(` after `√`: √(…)", "0..3");
-    check_err("a ** b", "expected an expression after `*`, found `*`", "3..4");
-    check_err("pi(2)", "unknown function pi; write pi*(x) or pi (x) for a product", "0..2");
-    check_err("1e99999", "number out of range: exponents go up to 10000", "0..7");
-    check_err("a # b", "expected an operator or the end of the expression, found `#`", "2..3");
-    check_err("a % b", "expected an operator or the end of the expression, found `%`", "2..3");
+    check_err(
+        "a ** b",
+        "expected an expression after `*`, found `*`",
+        "3..4",
+    );
+    check_err(
+        "pi(2)",
+        "unknown function pi; write pi*(x) or pi (x) for a product",
+        "0..2",
+    );
+    check_err(
+        "1e99999",
+        "number out of range: powers of ten go up to 1e10000",
+        "0..7",
+    );
+    check_err(
+        "2 1e-99999",
+        "number out of range: powers of ten go up to 1e10000",
+        "2..10",
+    );
+    check_err(
+        &"9".repeat(10_001),
+        "number too long: at most 10000 digits",
+        "0..10001",
+    );
+    check_err(
+        "a # b",
+        "expected an operator or the end of the expression, found `#`",
+        "2..3",
+    );
+    check_err(
+        "a % b",
+        "expected an operator or the end of the expression, found `%`",
+        "2..3",
+    );
 }
 
 #[test]
@@ -169,18 +278,26 @@ fn spans() {
     let src = "  m g sin(beta) + (a - b)";
     let e = expr(src).expect("parses");
     assert_eq!(at(src, e.span), "m g sin(beta) + (a - b)");
-    let ExprKind::Bin(_, lhs, rhs) = &e.kind else { panic!("{e:?}") };
+    let ExprKind::Bin(_, lhs, rhs) = &e.kind else {
+        panic!("{e:?}")
+    };
     assert_eq!(at(src, lhs.span), "m g sin(beta)");
     assert_eq!(at(src, rhs.span), "(a - b)");
-    let ExprKind::Bin(_, _, call) = &lhs.kind else { panic!("{lhs:?}") };
+    let ExprKind::Bin(_, _, call) = &lhs.kind else {
+        panic!("{lhs:?}")
+    };
     assert_eq!(at(src, call.span), "sin(beta)");
     let src = "-x^2";
     let e = expr(src).expect("parses");
-    let ExprKind::Neg(p) = &e.kind else { panic!("{e:?}") };
+    let ExprKind::Neg(p) = &e.kind else {
+        panic!("{e:?}")
+    };
     assert_eq!((at(src, e.span), at(src, p.span)), ("-x^2", "x^2"));
     let src = "β² + √x";
     let e = expr(src).expect("parses");
-    let ExprKind::Bin(_, a, b) = &e.kind else { panic!("{e:?}") };
+    let ExprKind::Bin(_, a, b) = &e.kind else {
+        panic!("{e:?}")
+    };
     assert_eq!((at(src, a.span), at(src, b.span)), ("β²", "√x"));
     let src = "a = b = c";
     let c = parse_chain(src, &ParseOptions::default()).expect("parses");
@@ -202,14 +319,20 @@ fn nesting_limit() {
     for unit in ["-", "sin(", "√", "2^"] {
         let src = unit.repeat(1_000_000);
         let e = expr(&src).expect_err("too deep");
-        assert_eq!(e.message, "expression nested deeper than 200 levels", "{unit}");
+        assert_eq!(
+            e.message, "expression nested deeper than 200 levels",
+            "{unit}"
+        );
     }
     assert!(expr(&format!("{}x", "-".repeat(200))).is_ok());
     assert!(expr(&format!("{}x", "x^".repeat(200))).is_ok());
     let small = ParseOptions { max_depth: 3 };
     assert!(parse_expr("((x))", &small).is_ok());
     let e = parse_expr("(((-x)))", &small).expect_err("too deep");
-    assert_eq!((e.message.as_str(), e.span.start), ("expression nested deeper than 3 levels", 3));
+    assert_eq!(
+        (e.message.as_str(), e.span.start),
+        ("expression nested deeper than 3 levels", 3)
+    );
 }
 
 #[test]
@@ -218,7 +341,11 @@ fn long_flat_expressions_are_bounded() {
     assert!(expr(&sum).is_ok());
     let sum = vec!["x"; 1_000_000].join(" + ");
     let e = expr(&sum).expect_err("too long");
-    assert!(e.message.starts_with("expression too large"), "{}", e.message);
+    assert!(
+        e.message.starts_with("expression too large"),
+        "{}",
+        e.message
+    );
     let product = "x ".repeat(1_000_000);
     assert!(expr(&product).is_err());
     let squares = format!("x{}", "²".repeat(100_000));
