@@ -6,7 +6,7 @@ use crate::normal::atom::{self, Atom, AtomId};
 use crate::normal::print::plain;
 use crate::normal::{Assumptions, Poly, Rat, Sign, Q};
 use num_bigint::BigInt;
-use num_traits::{One, Signed, ToPrimitive, Zero};
+use num_traits::{One, ToPrimitive, Zero};
 use std::collections::{BTreeMap, HashMap};
 
 /// Values of the symbols at which two sides differ, and the sides' values there.

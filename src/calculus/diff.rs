@@ -3,7 +3,6 @@
 use crate::normal::atom::{self, Atom, AtomId};
 use crate::normal::subst::atom_depends_on;
 use crate::normal::{func, trig, Assumptions, NormError, Poly, Rat, Q};
-use num_traits::One;
 use std::collections::HashMap;
 
 /// With respect to what a derivative is taken.

@@ -755,13 +755,13 @@ impl<'l, 'o> Checker<'l, 'o> {
                 d.notes = notes;
                 d
             }
-            Verdict::Undecided { why } | Verdict::NotEqual { diagnosis: Some(why), .. } => {
+            Verdict::Undecided { why } => {
                 let mut d = Diagnostic::error("E0302", format!("not verified{using}: rigor can neither prove nor refute this step"), span, "undecided");
                 notes.push(why);
                 d.notes = notes;
                 d
             }
-            Verdict::NotEqual { .. } | Verdict::Equal => {
+            Verdict::Equal => {
                 let mut d = Diagnostic::error("E0302", "not verified", span, "");
                 d.notes = notes;
                 d

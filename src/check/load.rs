@@ -5,7 +5,6 @@ use super::link::Checker;
 use super::report::FileReport;
 use crate::diag::Diagnostic;
 use crate::normal::Rat;
-use crate::syntax::ast::Span;
 use crate::syntax::{parse_file, ParseOptions};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -38,8 +37,6 @@ impl Default for Options {
 pub struct Exports {
     /// Label → the equations `lhs − rhs = 0` of that claim.
     pub claims: HashMap<String, Vec<Rat>>,
-    /// Whether the file verified completely.
-    pub ok: bool,
 }
 
 /// Resolves `use` imports for one top-level file.
@@ -97,10 +94,7 @@ impl Loader<'_> {
         let dir = canon.parent().map(Path::to_path_buf).unwrap_or_default();
         let (report, exports) = check_inner(&joined.display().to_string(), &src, &dir, self);
         self.stack.pop();
-        let exports = Exports {
-            ok: report.ok(),
-            ..exports
-        };
+        let _ = report;
         self.cache.insert(canon, exports.clone());
         Ok(exports)
     }
@@ -262,9 +256,4 @@ pub fn check_paths(paths: &[PathBuf], opts: &Options) -> Vec<FileReport> {
     }
     out.extend(early.map(|e| e.1));
     out
-}
-
-/// A span-less placeholder (for diagnostics about whole files).
-pub fn no_span() -> Span {
-    Span::default()
 }

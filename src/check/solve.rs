@@ -4,7 +4,7 @@
 
 use crate::normal::atom::{self, AtomId};
 use crate::normal::subst::{atom_depends_on, subst_atom};
-use crate::normal::{func, Assumptions, NormError, Poly, Rat, Sign, Q};
+use crate::normal::{func, Assumptions, NormError, Poly, Rat, Sign};
 use std::time::Instant;
 
 /// A fact `value = 0`, with the name it is cited by.

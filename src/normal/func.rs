@@ -8,7 +8,6 @@ use super::rat::Rat;
 use super::sign::{Assumptions, Sign};
 use super::{Limit, NormError};
 use num_bigint::{BigInt, BigUint};
-use num_integer::Roots;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
 /// Primes by trial division up to this bound; a larger cofactor is kept whole.

@@ -218,24 +218,58 @@ impl Poly {
             let (m, q) = &small.terms[0];
             return big.mul_term(m, q);
         }
-        let bound = small.len().saturating_mul(big.len());
-        let mut acc: HashMap<Mono, Q> = HashMap::with_capacity(bound.min(1 << 16));
-        for (m1, c1) in &small.terms {
-            for (m2, c2) in &big.terms {
-                let m = m1.mul(m2).ok_or(Limit::Exponent)?;
-                let c = c1 * c2;
-                match acc.get_mut(&m) {
-                    Some(v) => *v += c,
-                    None => {
-                        acc.insert(m, c);
-                    }
+        // Multiply over ℤ: scale both sides to integer coefficients, multiply, scale back
+        // once per result term. Small products accumulate in i128, the rest in BigInt.
+        let (sa, ia) = integer_form(small);
+        let (sb, ib) = integer_form(big);
+        let scale = sa * sb;
+        let bits = |v: &[(&Mono, BigInt)]| v.iter().map(|t| t.1.bits()).max().unwrap_or(0);
+        let fits = bits(&ia) + bits(&ib) + (usize::BITS - small.len().leading_zeros()) as u64 + 2 < 126;
+        let mut terms: Vec<(Mono, Q)> = if fits {
+            let ib: Vec<(&Mono, i128)> = ib.iter().map(|t| (t.0, i128_of(&t.1))).collect();
+            let mut acc: HashMap<Mono, i128, FxBuild> = HashMap::with_capacity_and_hasher(
+                small.len().saturating_mul(big.len()).min(1 << 16),
+                FxBuild,
+            );
+            for (m1, c1) in &ia {
+                let c1 = i128_of(c1);
+                for (m2, c2) in &ib {
+                    let m = m1.mul(m2).ok_or(Limit::Exponent)?;
+                    *acc.entry(m).or_insert(0) += c1 * c2;
+                }
+                if acc.len() > max_terms() {
+                    return Err(Limit::Terms);
                 }
             }
-            if acc.len() > max_terms() {
-                return Err(Limit::Terms);
+            acc.into_iter()
+                .filter(|t| t.1 != 0)
+                .map(|(m, c)| (m, Q::from_integer(BigInt::from(c)) * &scale))
+                .collect()
+        } else {
+            let mut acc: HashMap<Mono, BigInt, FxBuild> = HashMap::with_capacity_and_hasher(
+                small.len().saturating_mul(big.len()).min(1 << 16),
+                FxBuild,
+            );
+            for (m1, c1) in &ia {
+                for (m2, c2) in &ib {
+                    let m = m1.mul(m2).ok_or(Limit::Exponent)?;
+                    let c = c1 * c2;
+                    match acc.get_mut(&m) {
+                        Some(v) => *v += c,
+                        None => {
+                            acc.insert(m, c);
+                        }
+                    }
+                }
+                if acc.len() > max_terms() {
+                    return Err(Limit::Terms);
+                }
             }
-        }
-        let mut terms: Vec<(Mono, Q)> = acc.into_iter().filter(|t| !t.1.is_zero()).collect();
+            acc.into_iter()
+                .filter(|t| !t.1.is_zero())
+                .map(|(m, c)| (m, Q::from_integer(c) * &scale))
+                .collect()
+        };
         terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
         Ok(Poly { terms })
     }
@@ -415,6 +449,62 @@ impl Poly {
     /// Maps every coefficient (the result is re-normalised).
     pub fn map_coeffs(&self, f: impl Fn(&Q) -> Q) -> Poly {
         Poly::from_terms(self.terms.iter().map(|(m, q)| (m.clone(), f(q))).collect())
+    }
+}
+
+/// `p = scale · Σ cᵢ mᵢ` with integer `cᵢ`.
+fn integer_form(p: &Poly) -> (Q, Vec<(&Mono, BigInt)>) {
+    let mut l = BigInt::one();
+    for (_, q) in &p.terms {
+        if !q.denom().is_one() {
+            l = l.lcm(q.denom());
+        }
+    }
+    let ints = p
+        .terms
+        .iter()
+        .map(|(m, q)| (m, q.numer() * (&l / q.denom())))
+        .collect();
+    (Q::new(BigInt::one(), l), ints)
+}
+
+fn i128_of(n: &BigInt) -> i128 {
+    num_traits::ToPrimitive::to_i128(n).unwrap_or(0)
+}
+
+/// A fast hasher for monomials (FxHash's multiply-rotate), not exposed to input-chosen
+/// denial of service beyond what the term limit already bounds.
+#[derive(Clone, Copy, Default)]
+pub struct FxBuild;
+
+/// The hasher of [`FxBuild`].
+#[derive(Default)]
+pub struct Fx(u64);
+
+impl std::hash::BuildHasher for FxBuild {
+    type Hasher = Fx;
+    fn build_hasher(&self) -> Fx {
+        Fx(0)
+    }
+}
+
+impl std::hash::Hasher for Fx {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for b in bytes {
+            self.write_u64(u64::from(*b));
+        }
+    }
+    fn write_u32(&mut self, n: u32) {
+        self.write_u64(u64::from(n));
+    }
+    fn write_usize(&mut self, n: usize) {
+        self.write_u64(n as u64);
+    }
+    fn write_u64(&mut self, n: u64) {
+        self.0 = (self.0.rotate_left(5) ^ n).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
     }
 }
 

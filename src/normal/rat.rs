@@ -78,14 +78,6 @@ impl Rat {
         })
     }
 
-    /// A polynomial already reduced (no rule of any atom applies).
-    pub(crate) fn from_reduced(p: Poly) -> Rat {
-        Rat {
-            num: p,
-            den: Poly::one(),
-        }
-    }
-
     /// 0.
     pub fn zero() -> Rat {
         Rat {

@@ -11,7 +11,7 @@ use super::poly::{Poly, Q};
 use super::rat::Rat;
 use super::NormError;
 use num_bigint::BigInt;
-use num_traits::{One, Signed, ToPrimitive, Zero};
+use num_traits::{One, Signed, ToPrimitive};
 
 /// Multiples larger than this stay unexpanded atoms (`sin(1000 x)`).
 const MAX_MULTIPLE: i64 = 32;
