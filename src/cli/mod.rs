@@ -1,5 +1,31 @@
 //! The commands behind `rigor`'s subcommands; each returns the exit status.
 
+// Output that ignores a closed pipe (`rigor check | head` must not panic).
+macro_rules! out {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stdout().lock(), $($t)*);
+    }};
+}
+macro_rules! outln {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout().lock(), $($t)*);
+    }};
+}
+macro_rules! err {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stderr().lock(), $($t)*);
+    }};
+}
+macro_rules! errln {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr().lock(), $($t)*);
+    }};
+}
+
 use crate::Format;
 use rigor::decide::{decide, Verdict};
 use rigor::diag::{self, Diagnostic};
@@ -11,13 +37,13 @@ use std::path::Path;
 
 fn report_syntax(e: &SyntaxError, what: &str, src: &str) {
     let d = Diagnostic::error("E0001", format!("syntax error: {}", e.message), e.span, "here");
-    eprint!("{}", diag::render(&d, what, src));
+    err!("{}", diag::render(&d, what, src));
 }
 
 fn report_lower(e: &LowerError, what: &str, src: &str) {
     let code = if e.limit { "E0901" } else { "E0101" };
     let d = Diagnostic::error(code, e.message.clone(), e.span, "");
-    eprint!("{}", diag::render(&d, what, src));
+    err!("{}", diag::render(&d, what, src));
 }
 
 /// Builds the environment of `--assume` and `--body` options.
@@ -101,9 +127,9 @@ pub fn simplify(
         return 2;
     };
     if latex {
-        println!("{}", print::latex(&r));
+        outln!("{}", print::latex(&r));
     } else {
-        println!("{}", print::plain(&r));
+        outln!("{}", print::plain(&r));
     }
     0
 }
@@ -121,7 +147,7 @@ pub fn equiv(a: &str, b: &str, assume: &[String], bodies: &[String], opts: &Pars
     };
     match decide(&ra, &rb, &env.signs) {
         Verdict::Equal => {
-            println!("equal");
+            outln!("equal");
             0
         }
         Verdict::NotEqual {
@@ -130,23 +156,23 @@ pub fn equiv(a: &str, b: &str, assume: &[String], bodies: &[String], opts: &Pars
             counterexample,
             diagnosis,
         } => {
-            println!("not equal");
-            println!("  left:  {}", print::plain(&ra));
-            println!("  right: {}", print::plain(&rb));
+            outln!("not equal");
+            outln!("  left:  {}", print::plain(&ra));
+            outln!("  right: {}", print::plain(&rb));
             if let Some(d) = diagnosis {
-                println!("  {d}");
+                outln!("  {d}");
             }
             if exact {
-                println!(
+                outln!(
                     "  left − right = {}, a nonzero rational function of independent quantities",
                     print::plain(&difference)
                 );
             }
             if let Some(c) = counterexample {
                 if c.values.is_empty() {
-                    println!("  the left side is {}, the right side {}", c.lhs, c.rhs);
+                    outln!("  the left side is {}, the right side {}", c.lhs, c.rhs);
                 } else {
-                    println!(
+                    outln!(
                         "  counterexample: at {} the left side is {} and the right side {}",
                         c.assignment(),
                         c.lhs,
@@ -157,8 +183,8 @@ pub fn equiv(a: &str, b: &str, assume: &[String], bodies: &[String], opts: &Pars
             1
         }
         Verdict::Undecided { why } => {
-            println!("undecided");
-            println!("  {why}");
+            outln!("undecided");
+            outln!("  {why}");
             3
         }
     }
@@ -189,25 +215,25 @@ pub fn check(
     match format {
         Format::Human => {
             for r in &reports {
-                let text = tmp_human(r, verbose);
+                let text = rigor::render::human::report(r, verbose);
                 if !text.is_empty() {
                     if r.ok() {
-                        print!("{text}");
+                        out!("{text}");
                     } else {
-                        eprint!("{text}");
+                        err!("{text}");
                     }
                 }
             }
-            println!("{}", "(summary pending)");
+            out!("{}", rigor::render::human::summary(&reports));
         }
         Format::Json => {
             for r in &reports {
-                let _ = r;
+                outln!("{}", rigor::render::json::report(r));
             }
         }
         Format::Github => {
             for r in &reports {
-                let _ = r;
+                out!("{}", rigor::render::github::report(r));
             }
         }
     }
@@ -220,13 +246,58 @@ pub fn check(
     }
 }
 
-/// `rigor latex` / `rigor markdown`.
+/// `rigor latex` / `rigor markdown`: renders even when a step fails (marked), exit 1 then.
 pub fn document(file: &Path, out: Option<&Path>, latex: bool, opts: &ParseOptions) -> u8 {
-    let _ = (file, out, latex, opts);
-    eprintln!("error: documents are not built yet");
-    2
+    let options = rigor::check::Options {
+        parse: *opts,
+        ..rigor::check::Options::default()
+    };
+    let mut reports = rigor::check::check_paths(&[file.to_path_buf()], &options);
+    if reports.len() != 1 {
+        errln!("error: {} is not one derivation file", file.display());
+        return 2;
+    }
+    let report = reports.remove(0);
+    if report.ast.is_none() {
+        err!("{}", rigor::render::human::report(&report, false));
+        return 2;
+    }
+    let text = if latex {
+        rigor::render::latex::document(&report)
+    } else {
+        rigor::render::markdown::document(&report)
+    };
+    let written = match out {
+        None => {
+            out!("{text}");
+            Ok(())
+        }
+        Some(path) => write_atomically(path, &text),
+    };
+    if let Err(e) = written {
+        errln!("error: cannot write {}: {e}", out.map_or_else(String::new, |p| p.display().to_string()));
+        return 2;
+    }
+    if !report.ok() {
+        err!("{}", rigor::render::human::report(&report, false));
+    }
+    if report.input_error {
+        2
+    } else if report.ok() {
+        0
+    } else {
+        1
+    }
 }
 
-fn tmp_human(r: &rigor::check::FileReport, _verbose: bool) -> String {
-    r.diagnostics.iter().map(|d| diag::render(d, &r.path, &r.source)).collect()
+/// Writes to a temporary file beside `path`, then renames it over `path`, so a crash
+/// never leaves a half-written document.
+fn write_atomically(path: &Path, text: &str) -> std::io::Result<()> {
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let name = path.file_name().map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+    let tmp = dir.join(format!(".{name}.rigor-tmp-{}", std::process::id()));
+    std::fs::write(&tmp, text)?;
+    std::fs::rename(&tmp, path).inspect_err(|_| {
+        let _ = std::fs::remove_file(&tmp);
+    })
 }

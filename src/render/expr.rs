@@ -58,7 +58,10 @@ impl Ctx {
                 }
             }
         }
-        Ctx { bodies: Some(bodies), differentials }
+        Ctx {
+            bodies: Some(bodies),
+            differentials,
+        }
     }
 
     /// Whether the second argument `name` of a two-argument `int` names a body.
@@ -75,8 +78,8 @@ impl Ctx {
 
 /// Lowercase Greek letter names (a variable may be one of these).
 const GREEK_LOWER: &[&str] = &[
-    "alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa", "lambda",
-    "mu", "nu", "xi", "rho", "sigma", "tau", "upsilon", "phi", "chi", "psi", "omega",
+    "alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa",
+    "lambda", "mu", "nu", "xi", "rho", "sigma", "tau", "upsilon", "phi", "chi", "psi", "omega",
 ];
 
 /// A single lowercase letter or lowercase Greek name, with optional subscript and primes.
@@ -84,7 +87,8 @@ fn variable_like(name: &str) -> bool {
     let name = name.trim_end_matches('\'');
     let base = name.split('_').next().unwrap_or("");
     let mut chars = base.chars();
-    let single_lower = matches!((chars.next(), chars.next()), (Some(c), None) if c.is_ascii_lowercase());
+    let single_lower =
+        matches!((chars.next(), chars.next()), (Some(c), None) if c.is_ascii_lowercase());
     single_lower || GREEK_LOWER.contains(&base)
 }
 
@@ -188,14 +192,21 @@ fn decimal(scaled: &BigInt, k: u32) -> String {
     let digits = scaled.to_string();
     let k = k as usize;
     if k <= MAX_DECIMALS {
-        let padded = format!("{}{digits}", "0".repeat((k + 1).saturating_sub(digits.len())));
+        let padded = format!(
+            "{}{digits}",
+            "0".repeat((k + 1).saturating_sub(digits.len()))
+        );
         let (int, frac) = padded.split_at(padded.len() - k);
         return format!("{int}.{frac}");
     }
     let exponent = digits.len() as i64 - 1 - k as i64;
     let (first, rest) = digits.split_at(1.min(digits.len()));
     let rest = rest.trim_end_matches('0');
-    let mantissa = if rest.is_empty() { first.to_string() } else { format!("{first}.{rest}") };
+    let mantissa = if rest.is_empty() {
+        first.to_string()
+    } else {
+        format!("{first}.{rest}")
+    };
     format!("{mantissa} \\times 10^{{{exponent}}}")
 }
 
@@ -228,7 +239,9 @@ fn prec(e: &Expr) -> Prec {
 /// Whether the number prints as plain digits (an integer or a decimal, not negative).
 fn plain_number(e: &Expr) -> bool {
     match &e.kind {
-        ExprKind::Num(q) => !q.is_negative() && (q.is_integer() || decimal_places(q.denom()).is_some()),
+        ExprKind::Num(q) => {
+            !q.is_negative() && (q.is_integer() || decimal_places(q.denom()).is_some())
+        }
         _ => false,
     }
 }
@@ -277,7 +290,17 @@ impl Printer<'_> {
             ExprKind::Bin(BinOp::Add | BinOp::Sub, ..) => self.sum(e, depth, last),
             ExprKind::Bin(BinOp::Mul, ..) => self.product(e, depth, last),
             ExprKind::Bin(BinOp::Div, a, b) => {
-                format!("\\frac{{{}}}{{{}}}", self.expr(a, d, true), self.expr(b, d, true))
+                // `-L/2` is `(-L)/2`: a leading minus of a numerator that is not a sum
+                // goes in front, `-\frac{L}{2}`.
+                let den = self.expr(b, d, true);
+                if let ExprKind::Neg(inner) = &a.kind {
+                    return format!("-\\frac{{{}}}{{{den}}}", self.expr(inner, d, true));
+                }
+                let num = self.expr(a, d, true);
+                match num.strip_prefix('-') {
+                    Some(rest) if prec(a) > Prec::Sum => format!("-\\frac{{{rest}}}{{{den}}}"),
+                    _ => format!("\\frac{{{num}}}{{{den}}}"),
+                }
             }
             ExprKind::Bin(BinOp::Pow, base, exp) => self.power(base, exp, d, last),
             ExprKind::Call(f, args) => self.call(*f, args, d, last),
@@ -353,7 +376,7 @@ impl Printer<'_> {
             if i > 0 {
                 if s.starts_with(|c: char| c.is_ascii_digit()) {
                     out.push_str(" \\cdot ");
-                } else if prev_plain {
+                } else if prev_plain || out.ends_with("\\right)") || s.starts_with("\\left(") {
                     out.push(' ');
                 } else {
                     out.push_str("\\,");
@@ -369,7 +392,8 @@ impl Printer<'_> {
         let e = self.expr(exp, d, true);
         if let ExprKind::Call(f, args) = &base.kind {
             if let (Some(name), [arg]) = (operator_name(*f), args.as_slice()) {
-                let positive_integer = matches!(&exp.kind, ExprKind::Num(q) if q.is_integer() && q.is_positive());
+                let positive_integer =
+                    matches!(&exp.kind, ExprKind::Num(q) if q.is_integer() && q.is_positive());
                 if positive_integer {
                     return format!("{name}^{{{e}}}{}", self.operator_arg(arg, d, last));
                 }
@@ -396,7 +420,8 @@ impl Printer<'_> {
     /// end of a product, else in parentheses.
     fn operator_arg(&self, arg: &Expr, d: usize, last: bool) -> String {
         let s = self.expr(arg, d, true);
-        let bare = last && (matches!(arg.kind, ExprKind::Sym(_) | ExprKind::Pi) || plain_number(arg));
+        let bare =
+            last && (matches!(arg.kind, ExprKind::Sym(_) | ExprKind::Pi) || plain_number(arg));
         if !bare {
             paren(&s)
         } else if s.starts_with('\\') {
@@ -441,15 +466,26 @@ impl Printer<'_> {
             (Func::Sqrt, [a]) => Some(format!("\\sqrt{{{}}}", ex(a))),
             (Func::Exp, [a]) => Some(format!("e^{{{}}}", ex(a))),
             (Func::Abs, [a]) => Some(format!("\\left|{}\\right|", ex(a))),
-            (Func::Int, [g, x, a, b]) => self
-                .differential(x)
-                .map(|dx| format!("\\int_{{{}}}^{{{}}} {} \\, {dx}", ex(a), ex(b), self.operand(g, d))),
+            (Func::Int, [g, x, a, b]) => self.differential(x).map(|dx| {
+                format!(
+                    "\\int_{{{}}}^{{{}}} {} \\, {dx}",
+                    ex(a),
+                    ex(b),
+                    self.operand(g, d)
+                )
+            }),
             (Func::Int, [g, x]) => match &x.kind {
-                ExprKind::Sym(name) if name == "dm" => Some(format!("\\int {} \\, dm", self.operand(g, d))),
-                ExprKind::Sym(name) if self.ctx.is_body(name) => {
-                    Some(format!("\\int_{{{}}} {} \\, dm", symbol(name), self.operand(g, d)))
+                ExprKind::Sym(name) if name == "dm" => {
+                    Some(format!("\\int {} \\, dm", self.operand(g, d)))
                 }
-                _ => self.differential(x).map(|dx| format!("\\int {} \\, {dx}", self.operand(g, d))),
+                ExprKind::Sym(name) if self.ctx.is_body(name) => Some(format!(
+                    "\\int_{{{}}} {} \\, dm",
+                    symbol(name),
+                    self.operand(g, d)
+                )),
+                _ => self
+                    .differential(x)
+                    .map(|dx| format!("\\int {} \\, {dx}", self.operand(g, d))),
             },
             (Func::Diff, [g, x]) => self
                 .var(x)
@@ -458,9 +494,9 @@ impl Printer<'_> {
                 let n = ex(n);
                 format!("\\frac{{d^{{{n}}}}}{{d{x}^{{{n}}}}}{}", paren(&ex(g)))
             }),
-            (Func::Eval, [g, x, a, b]) => self.var(x).map(|x| {
-                format!("\\Big[{}\\Big]_{{{x}={}}}^{{{x}={}}}", ex(g), ex(a), ex(b))
-            }),
+            (Func::Eval, [g, x, a, b]) => self
+                .var(x)
+                .map(|x| format!("\\Big[{}\\Big]_{{{x}={}}}^{{{x}={}}}", ex(g), ex(a), ex(b))),
             (Func::Subs, [g, x, v]) => self
                 .var(x)
                 .map(|x| format!("\\left.{}\\right|_{{{x}={}}}", ex(g), ex(v))),

@@ -40,7 +40,9 @@ fn command(r: &FileReport, d: &Diagnostic) -> String {
 
 /// A message: `%` → `%25`, `\r` → `%0D`, `\n` → `%0A`.
 pub fn escape_data(s: &str) -> String {
-    s.replace('%', "%25").replace('\r', "%0D").replace('\n', "%0A")
+    s.replace('%', "%25")
+        .replace('\r', "%0D")
+        .replace('\n', "%0A")
 }
 
 /// A property value: as [`escape_data`], and `:` → `%3A`, `,` → `%2C`.

@@ -13,7 +13,11 @@ pub fn report(r: &FileReport, verbose: bool) -> String {
     let mut verified: Vec<(usize, String)> = Vec::new();
     if verbose {
         for link in r.claims.iter().flat_map(|c| &c.links) {
-            if let Status::Verified { how, side_conditions } = &link.status {
+            if let Status::Verified {
+                how,
+                side_conditions,
+            } = &link.status
+            {
                 let (line, col) = line_col(&r.source, link.span.start);
                 let mut s = format!("{}:{line}:{col}: verified ({})", r.path, justification(how));
                 if !side_conditions.is_empty() {
@@ -51,7 +55,13 @@ pub fn report(r: &FileReport, verbose: bool) -> String {
 fn justification(how: &Justification) -> String {
     let facts = |fs: &[String]| {
         fs.iter()
-            .map(|f| if f.starts_with("line ") { f.clone() } else { format!("[{f}]") })
+            .map(|f| {
+                if f.starts_with("line ") {
+                    f.clone()
+                } else {
+                    format!("[{f}]")
+                }
+            })
             .collect::<Vec<_>>()
             .join(", ")
     };
@@ -92,7 +102,11 @@ pub(crate) fn errors(r: &FileReport) -> usize {
     let failing: Vec<_> = r
         .claims
         .iter()
-        .filter(|c| c.links.iter().any(|l| matches!(l.status, Status::Failed | Status::Undecided)))
+        .filter(|c| {
+            c.links
+                .iter()
+                .any(|l| matches!(l.status, Status::Failed | Status::Undecided))
+        })
         .map(|c| c.span)
         .collect();
     let n = r
@@ -100,7 +114,9 @@ pub(crate) fn errors(r: &FileReport) -> usize {
         .iter()
         .filter(|d| d.severity == crate::diag::Severity::Error)
         .filter(|d| match &d.primary {
-            Some((s, _)) => !failing.iter().any(|c| s.start >= c.start && s.start < c.end.max(c.start + 1)),
+            Some((s, _)) => !failing
+                .iter()
+                .any(|c| s.start >= c.start && s.start < c.end.max(c.start + 1)),
             None => true,
         })
         .count();

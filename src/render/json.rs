@@ -57,7 +57,10 @@ fn position(r: &FileReport, span: Option<Span>, obj: &mut serde_json::Map<String
 
 fn link(r: &FileReport, l: &LinkReport) -> Value {
     let (status, how, side): (&str, Value, &[String]) = match &l.status {
-        Status::Verified { how, side_conditions } => ("verified", justification(how), side_conditions),
+        Status::Verified {
+            how,
+            side_conditions,
+        } => ("verified", justification(how), side_conditions),
         Status::Failed => ("failed", Value::Null, &[]),
         Status::Undecided => ("undecided", Value::Null, &[]),
         Status::Error => ("error", Value::Null, &[]),

@@ -70,7 +70,12 @@ fn block_latex(block: &Block, out: &mut String) {
             }
             out.push_str("\n\\par\n");
         }
-        Block::Display { prefix, math, note, tag } => {
+        Block::Display {
+            prefix,
+            math,
+            note,
+            tag,
+        } => {
             if let Some(p) = prefix {
                 out.push_str(&format!("\\textit{{{}}}\n", text(p)));
             }
@@ -144,7 +149,11 @@ fn problem_latex(p: &Problem, out: &mut String) {
     if let Some(line) = p.line {
         head.push_str(&format!(" (line {line})"));
     }
-    out.push_str(&format!("\\textbf{{{}:}} {}\\par\n", text(&head), text(&p.message)));
+    out.push_str(&format!(
+        "\\textbf{{{}:}} {}\\par\n",
+        text(&head),
+        text(&p.message)
+    ));
     for n in &p.notes {
         out.push_str(&format!("\\hspace*{{1em}}{}\\par\n", text(n)));
     }

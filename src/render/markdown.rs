@@ -4,7 +4,7 @@
 //! `\text{…}` and `\tag{…}` is made safe for MathJax and KaTeX.
 
 use super::solution::{build, Block, Inline, Just, Problem, Row};
-use super::text::{markdown_inline, markdown_message, markdown_text, mathjax_text};
+use super::text::{block_safe, markdown_inline, markdown_message, markdown_text, mathjax_text};
 use crate::check::report::FileReport;
 
 /// The worked solution of a checked file as Markdown.
@@ -41,7 +41,12 @@ fn block_markdown(block: &Block, out: &mut String) {
             out.push_str(&line);
             out.push('\n');
         }
-        Block::Display { prefix, math, note, tag } => {
+        Block::Display {
+            prefix,
+            math,
+            note,
+            tag,
+        } => {
             if let Some(p) = prefix {
                 out.push_str(&format!("*{}*\n\n", markdown_inline(p)));
             }
@@ -101,7 +106,11 @@ fn code(t: &str) -> String {
         longest = longest.max(run);
     }
     let fence = "`".repeat(longest + 1);
-    let pad = if t.starts_with('`') || t.ends_with('`') { " " } else { "" };
+    let pad = if t.starts_with('`') || t.ends_with('`') {
+        " "
+    } else {
+        ""
+    };
     format!("{fence}{pad}{t}{pad}{fence}")
 }
 
@@ -114,7 +123,10 @@ fn row_markdown(row: &Row, out: &mut String) {
     match &row.by {
         Some(Just::Text(t)) => out.push_str(&format!(" \\quad\\text{{(by {})}}", mathjax_text(t))),
         Some(Just::Labels(ls)) => {
-            let ls: Vec<String> = ls.iter().map(|l| format!("({})", mathjax_text(l))).collect();
+            let ls: Vec<String> = ls
+                .iter()
+                .map(|l| format!("({})", mathjax_text(l)))
+                .collect();
             out.push_str(&format!(" \\quad\\text{{by {}}}", ls.join(", ")));
         }
         None => {}
@@ -135,6 +147,7 @@ fn problem_markdown(p: &Problem, out: &mut String) {
     }
     out.push_str(&format!(": {}\n", markdown_message(&p.message)));
     for n in &p.notes {
-        out.push_str(&format!(">\n> {}\n", markdown_message(n)));
+        let note = block_safe(markdown_message(n));
+        out.push_str(&format!(">\n> {note}\n"));
     }
 }

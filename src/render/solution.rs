@@ -125,7 +125,10 @@ pub(crate) fn build(report: &FileReport) -> Solution {
         if !listing.is_empty() {
             blocks.push(Block::Listing(listing));
         }
-        return Solution { title: file_name, blocks };
+        return Solution {
+            title: file_name,
+            blocks,
+        };
     };
     Builder::new(report, ast).run(file_name)
 }
@@ -159,7 +162,8 @@ impl<'a> Builder<'a> {
             let is_prose = matches!(item, Item::Prose { .. });
             let is_decl = matches!(item, Item::Stmt(s) if is_declaration(&s.kind));
             if !is_prose && !prose.is_empty() {
-                self.blocks.push(Block::Paragraph(std::mem::take(&mut prose)));
+                self.blocks
+                    .push(Block::Paragraph(std::mem::take(&mut prose)));
             }
             if !is_decl {
                 self.finish_decls(&mut decls, &mut decl_problems);
@@ -169,7 +173,8 @@ impl<'a> Builder<'a> {
                     if *level == 1 && title.is_none() {
                         title = Some(text.clone());
                     } else {
-                        self.blocks.push(Block::Heading((*level).max(1), text.clone()));
+                        self.blocks
+                            .push(Block::Heading((*level).max(1), text.clone()));
                     }
                 }
                 Item::Prose { parts, .. } => {
@@ -204,16 +209,23 @@ impl<'a> Builder<'a> {
             .map(|(d, _)| self.problem(d, false))
             .collect();
         if !rest.is_empty() {
-            self.blocks.push(Block::Heading(2, "Problems found by the checker".into()));
+            self.blocks
+                .push(Block::Heading(2, "Problems found by the checker".into()));
             self.blocks.push(Block::Problems(rest));
         }
-        Solution { title: title.unwrap_or(file_name), blocks: self.blocks }
+        Solution {
+            title: title.unwrap_or(file_name),
+            blocks: self.blocks,
+        }
     }
 
     /// Ends a run of declarations: the "Given quantities" sentence and its problems.
     fn finish_decls(&mut self, decls: &mut Vec<Inline>, problems: &mut Vec<Problem>) {
         if !decls.is_empty() {
-            let mut p = vec![Inline::Strong("Given quantities:".into()), Inline::Text(" ".into())];
+            let mut p = vec![
+                Inline::Strong("Given quantities:".into()),
+                Inline::Text(" ".into()),
+            ];
             p.append(decls);
             p.push(Inline::Text(".".into()));
             self.blocks.push(Block::Paragraph(p));
@@ -228,7 +240,12 @@ impl<'a> Builder<'a> {
         if !out.is_empty() {
             out.push(Inline::Text("; ".into()));
         }
-        let names = |ns: &[Name]| ns.iter().map(|n| symbol(&n.name)).collect::<Vec<_>>().join(", ");
+        let names = |ns: &[Name]| {
+            ns.iter()
+                .map(|n| symbol(&n.name))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
         match kind {
             StmtKind::Symbols { names: ns, sign } => {
                 let sign = match sign {
@@ -280,7 +297,11 @@ impl<'a> Builder<'a> {
                         }
                         m
                     }
-                    BodyDef::Abstract { mass, coords, centred } => {
+                    BodyDef::Abstract {
+                        mass,
+                        coords,
+                        centred,
+                    } => {
                         let coords: Vec<String> = coords.iter().map(|c| symbol(&c.name)).collect();
                         let mut m = format!(
                             "\\text{{mass }} {},\\quad \\text{{coordinates }} {}",
@@ -302,10 +323,19 @@ impl<'a> Builder<'a> {
             }
             StmtKind::Let { name, value } => {
                 let math = format!("{} := {}", symbol(&name.name), expr_latex_in(value, ctx));
-                self.blocks.push(Block::Display { prefix: None, math, note: None, tag: None });
+                self.blocks.push(Block::Display {
+                    prefix: None,
+                    math,
+                    note: None,
+                    tag: None,
+                });
             }
             StmtKind::Given { label, chain } | StmtKind::Constraint { label, chain } => {
-                let note = if matches!(stmt.kind, StmtKind::Given { .. }) { "given" } else { "constraint" };
+                let note = if matches!(stmt.kind, StmtKind::Given { .. }) {
+                    "given"
+                } else {
+                    "constraint"
+                };
                 self.blocks.push(Block::Display {
                     prefix: None,
                     math: chain_latex_in(chain, ctx),
@@ -313,11 +343,20 @@ impl<'a> Builder<'a> {
                     tag: label.as_ref().map(|l| l.name.clone()),
                 });
             }
-            StmtKind::Claim { label, chain, where_ } => {
+            StmtKind::Claim {
+                label,
+                chain,
+                where_,
+            } => {
                 let rows = self.claim_rows(stmt, chain, where_);
-                self.blocks.push(Block::Claim { rows, tag: label.as_ref().map(|l| l.name.clone()) });
+                self.blocks.push(Block::Claim {
+                    rows,
+                    tag: label.as_ref().map(|l| l.name.clone()),
+                });
             }
-            StmtKind::Use { labels, path, with, .. } => {
+            StmtKind::Use {
+                labels, path, with, ..
+            } => {
                 let mut p = vec![
                     Inline::Text("From ".into()),
                     Inline::Code(path.clone()),
@@ -387,10 +426,9 @@ impl<'a> Builder<'a> {
     fn attach(&mut self, span: Span, in_claim: bool) -> Vec<Problem> {
         let mut found = Vec::new();
         for (k, d) in self.report.diagnostics.iter().enumerate() {
-            let inside = d
-                .primary
-                .as_ref()
-                .is_some_and(|(s, _)| s.start >= span.start && s.start < span.end.max(span.start + 1));
+            let inside = d.primary.as_ref().is_some_and(|(s, _)| {
+                s.start >= span.start && s.start < span.end.max(span.start + 1)
+            });
             if inside && !self.shown[k] {
                 self.shown[k] = true;
                 found.push(self.problem(d, in_claim));
@@ -408,7 +446,10 @@ impl<'a> Builder<'a> {
         };
         Problem {
             kind,
-            line: d.primary.as_ref().map(|(s, _)| line_col(&self.report.source, s.start).0),
+            line: d
+                .primary
+                .as_ref()
+                .map(|(s, _)| line_col(&self.report.source, s.start).0),
             message: d.message.clone(),
             notes: d.notes.clone(),
         }
@@ -418,19 +459,32 @@ impl<'a> Builder<'a> {
 fn is_declaration(kind: &StmtKind) -> bool {
     matches!(
         kind,
-        StmtKind::Symbols { .. } | StmtKind::Time { .. } | StmtKind::Unknowns { .. } | StmtKind::Units { .. }
+        StmtKind::Symbols { .. }
+            | StmtKind::Time { .. }
+            | StmtKind::Unknowns { .. }
+            | StmtKind::Units { .. }
     )
 }
 
 /// `(IO), (X)`.
 fn label_list(labels: &[Label]) -> String {
-    labels.iter().map(|l| format!("({})", l.name)).collect::<Vec<_>>().join(", ")
+    labels
+        .iter()
+        .map(|l| format!("({})", l.name))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// `a = 1,\ b = 2` (LaTeX).
 fn assignments(list: &[Assign], ctx: &Ctx) -> String {
     list.iter()
-        .map(|a| format!("{} = {}", symbol(&a.name.name), expr_latex_in(&a.value, ctx)))
+        .map(|a| {
+            format!(
+                "{} = {}",
+                symbol(&a.name.name),
+                expr_latex_in(&a.value, ctx)
+            )
+        })
         .collect::<Vec<_>>()
         .join(",\\ ")
 }

@@ -1,19 +1,612 @@
-//! Tests of the renderers.
-use super::expr::expr_latex;
-use crate::syntax::{parse_expr, ParseOptions};
+//! Tests of the renderers: expression LaTeX as data, escaping, the summary line,
+//! JSON fields, and documents that must compile with pdflatex.
+
+use super::expr::{chain_latex, expr_latex, expr_latex_in, number_latex, Ctx};
+use super::text::{latex_text, markdown_text, mathjax_text};
+use super::{github, human, json, latex, markdown};
+use crate::check::report::{ClaimReport, FileReport, Justification, LinkReport, Status};
+use crate::diag::{Diagnostic, Severity};
+use crate::syntax::ast::{Item, Span, StmtKind};
+use crate::syntax::{parse_chain, parse_expr, parse_file, ParseOptions};
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use std::path::Path;
+use std::process::Command;
+
+/// Parses `src` and checks its LaTeX.
+fn check(src: &str, expected: &str) {
+    let e = parse_expr(src, &ParseOptions::default()).unwrap_or_else(|err| panic!("{src}: {err}"));
+    assert_eq!(expr_latex(&e), expected, "LaTeX of `{src}`");
+}
 
 #[test]
-fn dump() {
-    for s in [
-        "a + b*c", "(a + b) c", "a - (b - c)", "a - (b + c)", "a + (b + c)", "a + (-b)", "-(a + b)", "-x^2", "(-x)^2",
-        "2^-1", "a^b^c", "(a^b)^c", "m L^2/12", "m/L dy", "(a+b)/(c-d)", "(a/b)^2", "(a+b)^2", "2 3", "2 m", "m g cos(beta)",
-        "sin(beta)", "sin(2 theta)", "sin(x) y", "sin(beta)^2", "sqrt(a)^2", "sqrt(a^2 + b^2)", "exp(-t/tau)", "abs(F)", "ln(x)", "tan(pi/4)",
-        "pi R^2", "0.71 R", "1.5e-3", "1e-20", "x'", "theta''", "I_G", "I_xx", "x_1", "k_G^2", "omega", "mg",
-        "int(y^2, y, -L/2, L/2)", "int(x, x)", "int(y^2, rod)", "int(1, B)", "int(x^2, dm)", "int(y^2 + z^2, theta)", "int(a + b, x, 0, 1)",
-        "diff(x^2, x)", "diff(sin(t), t, 2)", "eval(y^3/3, y, -L/2, L/2)", "subs(x^2, x, a + 1)", "m (L/2)^2", "(a+b)(a-b)", "-2/3 g sin(beta)",
-        "a b / c d", "x''^2", "-(-x)", "a * -b", "2 (a+b)", "x^(1/2)", "2^x", "x 2", "cos(beta) x",
+fn precedence_and_parentheses() {
+    check("a + b*c", "a + b\\,c");
+    check("(a + b) c", "\\left(a + b\\right) c");
+    check("a - (b - c)", "a - \\left(b - c\\right)");
+    check("a - (b + c)", "a - \\left(b + c\\right)");
+    check("a + (b + c)", "a + b + c");
+    check("a + (-b)", "a + \\left(-b\\right)");
+    check("a * -b", "a \\left(-b\\right)");
+    check("-(a + b)", "-\\left(a + b\\right)");
+    check("-(-x)", "-\\left(-x\\right)");
+    check("-x^2", "-x^{2}");
+    check("(-x)^2", "\\left(-x\\right)^{2}");
+    check("(a+b)(a-b)", "\\left(a + b\\right) \\left(a - b\\right)");
+    check("2 (a+b)", "2 \\left(a + b\\right)");
+}
+
+#[test]
+fn products_and_fractions() {
+    check("m g", "m\\,g");
+    check("2 m", "2 m");
+    check("2 3", "2 \\cdot 3");
+    check("m L^2/12", "\\frac{m\\,L^{2}}{12}");
+    check("m/L dy", "\\frac{m}{L}\\,\\mathit{dy}");
+    check("(a+b)/(c-d)", "\\frac{a + b}{c - d}");
+    check("-L/2", "-\\frac{L}{2}");
+    check("-2/3 g sin(beta)", "-\\frac{2}{3}\\,g\\,\\sin\\beta");
+    check("a b / c d", "\\frac{a\\,b}{c}\\,d");
+    check("-(a + b)/2", "-\\frac{a + b}{2}");
+    check("-I_G x''/R^2", "-\\frac{I_{G}\\,\\ddot{x}}{R^{2}}");
+    check("(-a + b)/2", "\\frac{-a + b}{2}");
+    check("m (L/2)^2", "m \\left(\\frac{L}{2}\\right)^{2}");
+}
+
+#[test]
+fn powers() {
+    check("2^-1", "2^{-1}");
+    check("a^b^c", "a^{b^{c}}");
+    check("(a^b)^c", "\\left(a^{b}\\right)^{c}");
+    check("(a/b)^2", "\\left(\\frac{a}{b}\\right)^{2}");
+    check("(a+b)^2", "\\left(a + b\\right)^{2}");
+    check("x^(1/2)", "x^{\\frac{1}{2}}");
+    check("sqrt(a)^2", "\\left(\\sqrt{a}\\right)^{2}");
+    check("sin(beta)^2", "\\sin^{2}\\beta");
+    check("x''^2", "\\ddot{x}^{2}");
+    check("k_G^2", "k_{G}^{2}");
+}
+
+#[test]
+fn functions() {
+    check("sin(beta)", "\\sin\\beta");
+    check("cos(x)", "\\cos x");
+    check("sin(2 theta)", "\\sin\\left(2 \\theta\\right)");
+    check("tan(pi/4)", "\\tan\\left(\\frac{\\pi}{4}\\right)");
+    check("ln(x)", "\\ln x");
+    check("m g cos(beta)", "m\\,g\\,\\cos\\beta");
+    check("cos(beta) x", "\\cos\\left(\\beta\\right) x");
+    check("sqrt(a^2 + b^2)", "\\sqrt{a^{2} + b^{2}}");
+    check("exp(-t/tau)", "e^{-\\frac{t}{\\tau}}");
+    check("abs(F)", "\\left|F\\right|");
+    check("pi R^2", "\\pi\\,R^{2}");
+}
+
+#[test]
+fn calculus_forms() {
+    check(
+        "int(y^2, y, -L/2, L/2)",
+        "\\int_{-\\frac{L}{2}}^{\\frac{L}{2}} y^{2} \\, dy",
+    );
+    check(
+        "int(a + b, x, 0, 1)",
+        "\\int_{0}^{1} \\left(a + b\\right) \\, dx",
+    );
+    check("int(x, x)", "\\int x \\, dx");
+    check("int(x, theta)", "\\int x \\, d\\theta");
+    check("int(y^2, rod)", "\\int_{\\mathit{rod}} y^{2} \\, dm");
+    check("int(1, B)", "\\int_{B} 1 \\, dm");
+    check("int(x^2, dm)", "\\int x^{2} \\, dm");
+    check("diff(x^2, x)", "\\frac{d}{dx}\\left(x^{2}\\right)");
+    check(
+        "diff(sin(t), t, 2)",
+        "\\frac{d^{2}}{dt^{2}}\\left(\\sin t\\right)",
+    );
+    check(
+        "eval(y^3/3, y, -L/2, L/2)",
+        "\\Big[\\frac{y^{3}}{3}\\Big]_{y=-\\frac{L}{2}}^{y=\\frac{L}{2}}",
+    );
+    check("subs(x^2, x, a + 1)", "\\left.x^{2}\\right|_{x=a + 1}");
+}
+
+#[test]
+fn symbols_and_numbers() {
+    check("x'", "\\dot{x}");
+    check("theta''", "\\ddot{\\theta}");
+    check("I_G", "I_{G}");
+    check("x_1", "x_{1}");
+    check("omega", "\\omega");
+    check("β", "\\beta");
+    check("mg", "\\mathit{mg}");
+    check("0.71 R", "0.71 R");
+    check("1.5e-3", "0.0015");
+    check("12", "12");
+    check("1e-20", "1 \\times 10^{-20}");
+    let q = |n: i64, d: i64| BigRational::new(BigInt::from(n), BigInt::from(d));
+    assert_eq!(number_latex(&q(71, 100)), "0.71");
+    assert_eq!(number_latex(&q(-1, 8)), "-0.125");
+    assert_eq!(number_latex(&q(1, 3)), "\\frac{1}{3}");
+    assert_eq!(number_latex(&q(-7, 6)), "-\\frac{7}{6}");
+    assert_eq!(number_latex(&q(5, 1)), "5");
+}
+
+#[test]
+fn relations_and_chains() {
+    let chain = |s: &str| chain_latex(&parse_chain(s, &ParseOptions::default()).unwrap());
+    assert_eq!(chain("a = b != c"), "a = b \\neq c");
+    assert_eq!(chain("a < b <= c"), "a < b \\leq c");
+    assert_eq!(chain("a > b >= c"), "a > b \\geq c");
+    assert_eq!(chain("k_G ~= 0.71 R"), "k_{G} \\approx 0.71 R");
+}
+
+#[test]
+fn file_context_knows_bodies_and_differentials() {
+    let src = "symbols m L > 0\nbody b: dm = m/L dy, y from 0 to L\nlet I = int(y^2, b)\n";
+    let file = parse_file(src, &ParseOptions::default()).unwrap();
+    let ctx = Ctx::from_file(&file);
+    let e = |s: &str| parse_expr(s, &ParseOptions::default()).unwrap();
+    assert_eq!(
+        expr_latex_in(&e("int(y^2, b)"), &ctx),
+        "\\int_{b} y^{2} \\, dm"
+    );
+    assert_eq!(
+        expr_latex_in(&e("int(y^2, rod)"), &ctx),
+        "\\int y^{2} \\, d\\mathit{rod}"
+    );
+    assert_eq!(expr_latex_in(&e("m/L dy"), &ctx), "\\frac{m}{L}\\,dy");
+}
+
+#[test]
+fn deep_nesting_is_cut() {
+    let deep = format!("{}x{}", "sqrt(".repeat(150), ")".repeat(150));
+    let e = parse_expr(&deep, &ParseOptions::default()).unwrap();
+    let s = expr_latex(&e);
+    assert!(s.contains("\\cdots"));
+    assert_eq!(s.matches('{').count(), s.matches('}').count());
+}
+
+#[test]
+fn latex_escaping() {
+    assert_eq!(
+        latex_text("100% & {x} \\ ~ ^ _ # $"),
+        "100\\% \\& \\{x\\} \\textbackslash{} \\textasciitilde{} \\textasciicircum{} \\_ \\# \\$"
+    );
+    assert_eq!(latex_text("é ü ç 中"), "\\'{e} \\\"{u} \\c{c} ?");
+    assert_eq!(latex_text("β ≈ 2×θ – “x”"), "\\ensuremath{\\beta} \\ensuremath{\\approx} 2\\ensuremath{\\times}\\ensuremath{\\theta} -- ``x''");
+    assert_eq!(
+        latex_text("the \"some algebra\" (\"x\")"),
+        "the ``some algebra'' (``x'')"
+    );
+    assert_eq!(markdown_text("# a*b_c $x$"), "\\# a\\*b\\_c \\$x\\$");
+    assert_eq!(markdown_text("1. x"), "1\\. x");
+    assert_eq!(markdown_text("> x"), "\\> x");
+    assert_eq!(mathjax_text("{a}\\b 5%"), "(a)/b 5 percent");
+}
+
+#[test]
+fn github_commands() {
+    assert_eq!(github::escape_data("50%\r\nx:y,z"), "50%25%0D%0Ax:y,z");
+    assert_eq!(github::escape_property("a:b,c%"), "a%3Ab%2Cc%25");
+    let src = "symbols a\nclaim a = 2 a\n";
+    let r = FileReport {
+        path: "dir/x,y.deriv".into(),
+        source: src.into(),
+        diagnostics: vec![
+            Diagnostic::error("E0301", "not equal: 100% wrong", Span::new(18, 21), "here")
+                .note("at a = 1"),
+            Diagnostic {
+                severity: Severity::Warning,
+                code: "W0001",
+                message: "assuming a != 0".into(),
+                primary: None,
+                notes: vec![],
+            },
+        ],
+        ..Default::default()
+    };
+    assert_eq!(
+        github::report(&r),
+        "::error file=dir/x%2Cy.deriv,line=2,col=9,endLine=2,endColumn=12,title=E0301::not equal: 100%25 wrong%0Aat a = 1\n\
+         ::warning file=dir/x%2Cy.deriv,title=W0001::assuming a != 0\n"
+    );
+}
+
+/// A report of `src` with one claim whose links have the given statuses, and a
+/// diagnostic for each link that is not verified.
+fn report_with(path: &str, src: &str, statuses: Vec<Status>) -> FileReport {
+    let ast = parse_file(src, &ParseOptions::default()).unwrap();
+    let mut claims = Vec::new();
+    let mut diagnostics = Vec::new();
+    let mut statuses = statuses.into_iter();
+    for item in &ast.items {
+        if let Item::Stmt(stmt) = item {
+            if let StmtKind::Claim { label, chain, .. } = &stmt.kind {
+                let mut links = Vec::new();
+                for link in &chain.links {
+                    let status = statuses.next().unwrap_or(Status::Verified {
+                        how: Justification::Identity,
+                        side_conditions: vec![],
+                    });
+                    if !status.is_verified() {
+                        diagnostics.push(
+                            Diagnostic::error(
+                                "E0301",
+                                "the two sides differ by a factor {2} & 100%",
+                                link.span,
+                                "here",
+                            )
+                            .note("at m = 1"),
+                        );
+                    }
+                    links.push(LinkReport {
+                        span: link.span,
+                        op: link.op,
+                        lhs: None,
+                        rhs: None,
+                        status,
+                    });
+                }
+                let line = crate::diag::line_col(src, stmt.span.start).0;
+                claims.push(ClaimReport {
+                    label: label.as_ref().map(|l| l.name.clone()),
+                    span: stmt.span,
+                    line,
+                    links,
+                });
+            }
+        }
+    }
+    FileReport {
+        path: path.into(),
+        source: src.into(),
+        ast: Some(ast),
+        claims,
+        diagnostics,
+        input_error: false,
+    }
+}
+
+const SMALL: &str = "# Small\nsymbols m g > 0\nunknowns F\ngiven [Fx] F = m g\n\
+claim [two] F = m g by [Fx]\n  = 2 m g by doubling it\n  = m g + m g\n";
+
+#[test]
+fn summary_line() {
+    let r = report_with(
+        "a.deriv",
+        SMALL,
+        vec![
+            Status::Verified {
+                how: Justification::Facts(vec!["Fx".into()]),
+                side_conditions: vec![],
+            },
+            Status::Failed,
+            Status::Undecided,
+        ],
+    );
+    let bad = FileReport {
+        path: "b.deriv".into(),
+        input_error: true,
+        diagnostics: vec![Diagnostic::error(
+            "E0001",
+            "cannot read b.deriv",
+            Span::new(0, 0),
+            "",
+        )],
+        ..Default::default()
+    };
+    assert_eq!(
+        human::summary(&[r, bad]),
+        "files: 2, claims: 3, verified: 1, failed: 2, errors: 1\n"
+    );
+    assert_eq!(
+        human::summary(&[]),
+        "files: 0, claims: 0, verified: 0, failed: 0, errors: 0\n"
+    );
+}
+
+#[test]
+fn human_verbose_lines() {
+    let r = report_with(
+        "a.deriv",
+        SMALL,
+        vec![
+            Status::Verified {
+                how: Justification::Facts(vec!["Fx".into(), "line 3".into()]),
+                side_conditions: vec![],
+            },
+            Status::Verified {
+                how: Justification::Identity,
+                side_conditions: vec!["g != 0".into()],
+            },
+            Status::Failed,
+        ],
+    );
+    let out = human::report(&r, true);
+    assert!(out.starts_with("a.deriv:5:"), "{out}");
+    assert!(out.contains(": verified (from [Fx], line 3)\n"), "{out}");
+    assert!(
+        out.contains(": verified (identity), assuming g != 0\n"),
+        "{out}"
+    );
+    assert!(out.contains("error[E0301]: the two sides differ"), "{out}");
+    assert!(!human::report(&r, false).contains("verified ("));
+}
+
+#[test]
+fn json_fields() {
+    let r = report_with(
+        "a.deriv",
+        SMALL,
+        vec![
+            Status::Verified {
+                how: Justification::Facts(vec!["Fx".into()]),
+                side_conditions: vec!["m != 0".into()],
+            },
+            Status::Failed,
+        ],
+    );
+    let v = json::report(&r);
+    for key in ["path", "ok", "input_error", "claims", "diagnostics"] {
+        assert!(v.get(key).is_some(), "missing {key}");
+    }
+    assert_eq!(v["ok"], false);
+    let link = &v["claims"][0]["links"][0];
+    for key in [
+        "line",
+        "column",
+        "end_line",
+        "end_column",
+        "op",
+        "lhs",
+        "rhs",
+        "status",
+        "justification",
+        "side_conditions",
     ] {
-        let e = parse_expr(s, &ParseOptions::default()).unwrap();
-        println!("{s:30} => {}", expr_latex(&e));
+        assert!(link.get(key).is_some(), "missing link.{key}");
+    }
+    assert_eq!(v["claims"][0]["label"], "two");
+    assert_eq!(v["claims"][0]["line"], 5);
+    assert_eq!(link["status"], "verified");
+    assert_eq!(link["justification"]["kind"], "facts");
+    assert_eq!(link["justification"]["facts"][0], "Fx");
+    assert_eq!(link["side_conditions"][0], "m != 0");
+    assert_eq!(v["claims"][0]["links"][1]["status"], "failed");
+    assert!(v["claims"][0]["links"][1]["justification"].is_null());
+    let d = &v["diagnostics"][0];
+    for key in [
+        "severity",
+        "code",
+        "message",
+        "line",
+        "column",
+        "end_line",
+        "end_column",
+        "label",
+        "notes",
+    ] {
+        assert!(d.get(key).is_some(), "missing diagnostic.{key}");
+    }
+    assert_eq!(d["severity"], "error");
+    assert_eq!(d["line"], 6);
+}
+
+#[test]
+fn failures_are_marked_in_documents() {
+    let r = report_with(
+        "a.deriv",
+        SMALL,
+        vec![
+            Status::Verified {
+                how: Justification::Identity,
+                side_conditions: vec![],
+            },
+            Status::Failed,
+        ],
+    );
+    let tex = latex::document(&r);
+    assert!(tex.contains("\\title{Small}"), "{tex}");
+    assert!(tex.contains("\\tag{Fx}"), "{tex}");
+    assert!(tex.contains("\\tag{two}"), "{tex}");
+    assert!(
+        tex.contains("&= 2 m\\,g \\quad\\text{(by doubling it)} \\quad\\textbf{[not verified]}"),
+        "{tex}"
+    );
+    assert!(tex.contains("\\text{by (Fx)}"), "{tex}");
+    assert!(
+        tex.contains(
+            "\\textbf{Not verified (line 6):} the two sides differ by a factor \\{2\\} \\& 100\\%"
+        ),
+        "{tex}"
+    );
+    compile("failures", &tex);
+    let md = markdown::document(&r);
+    assert!(md.starts_with("# Small\n"), "{md}");
+    assert!(
+        md.contains("> **not verified** (line 6): the two sides differ by a factor {2} & 100%\n"),
+        "{md}"
+    );
+    assert!(
+        md.contains("$$\n\\begin{aligned}\nF &= m\\,g \\quad\\text{by (Fx)} \\\\\n"),
+        "{md}"
+    );
+    assert!(md.contains("\\end{aligned} \\tag{two}\n$$\n"), "{md}");
+}
+
+#[test]
+fn unreadable_file_document_compiles() {
+    let r = FileReport {
+        path: "dir/we{i}rd_%name.deriv".into(),
+        source: "claim [x] a = = b\n".into(),
+        input_error: true,
+        diagnostics: vec![Diagnostic::error(
+            "E0101",
+            "expected an expression after `=` \\end{verbatim}",
+            Span::new(14, 15),
+            "here",
+        )],
+        ..Default::default()
+    };
+    let tex = latex::document(&r);
+    assert!(tex.contains("could not be read"));
+    compile("unreadable", &tex);
+    let md = markdown::document(&r);
+    assert!(md.contains("```text\nerror[E0101]"), "{md}");
+}
+
+#[test]
+fn hostile_prose_compiles() {
+    let src = "# Title with $ & % # _ { } ~ ^ \\ \\end{document}\n\
+               ## Section {\n\
+               > 100% of $x$ & {weird} \\ ~ ^ _ # é ü 中文 \\end{document}\n\
+               > more – “quoted” ≈ β θ μ π ρ λ ω ≤ ≥ × · − — ’ < > |\n\
+               symbols x y_1 > 0\n\
+               units x: m/s^2, y_1: {kg}%\n\
+               given [a_b] x = y_1 by {}\\\n\
+               claim [c_d] x = y_1 by [a_b]\n  = y_1 by 100% {sure} \\ ~ ^ _ # é\n\
+               use [E_1] from \"we{i}rd_%$.deriv\" with x = 2 y_1\n";
+    let ast = parse_file(src, &ParseOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    let r = FileReport {
+        path: "h.deriv".into(),
+        source: src.into(),
+        ast: Some(ast),
+        ..Default::default()
+    };
+    let tex = latex::document(&r);
+    assert!(
+        tex.contains("100\\% of $x$ \\& \\{weird\\} \\textbackslash{}"),
+        "{tex}"
+    );
+    compile("hostile", &tex);
+}
+
+#[test]
+fn deep_expression_compiles() {
+    let deep = format!(
+        "symbols x > 0\nclaim {}x{} = x\nclaim {}x{} = x\n",
+        "sqrt(1/(".repeat(60),
+        "))".repeat(60),
+        "(1+x)^(".repeat(60),
+        ")".repeat(60)
+    );
+    let ast = parse_file(&deep, &ParseOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    let r = FileReport {
+        path: "deep.deriv".into(),
+        source: deep.clone(),
+        ast: Some(ast),
+        ..Default::default()
+    };
+    compile("deep", &latex::document(&r));
+}
+
+#[test]
+fn every_derivation_compiles() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("derivations");
+    let mut entries: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "deriv"))
+        .collect();
+    entries.sort();
+    assert!(!entries.is_empty());
+    for path in entries {
+        let src = std::fs::read_to_string(&path).unwrap();
+        let ast = parse_file(&src, &ParseOptions::default()).ok();
+        let r = FileReport {
+            path: path.display().to_string(),
+            source: src,
+            input_error: ast.is_none(),
+            ast,
+            ..Default::default()
+        };
+        let name = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let md = markdown::document(&r);
+        assert!(md.starts_with("# "), "{name}: {md}");
+        compile(&name, &latex::document(&r));
+    }
+}
+
+/// Compiles `tex` with pdflatex in a fresh temporary folder and asserts success.
+/// Without pdflatex the test fails, unless `RIGOR_SKIP_PDFLATEX=1`.
+fn compile(name: &str, tex: &str) {
+    if Command::new("pdflatex").arg("--version").output().is_err() {
+        if std::env::var("RIGOR_SKIP_PDFLATEX").is_ok_and(|v| v == "1") {
+            return;
+        }
+        panic!("pdflatex is not on PATH: install TeX Live or set RIGOR_SKIP_PDFLATEX=1");
+    }
+    let dir = std::env::temp_dir().join(format!("rigor-render-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("doc.tex"), tex).unwrap();
+    let out = Command::new("pdflatex")
+        .args([
+            "-interaction=nonstopmode",
+            "-halt-on-error",
+            "-no-shell-escape",
+            "doc.tex",
+        ])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let ok = out.status.success() && dir.join("doc.pdf").exists();
+    let log = String::from_utf8_lossy(&out.stdout).into_owned();
+    let _ = std::fs::remove_dir_all(&dir);
+    assert!(
+        ok,
+        "pdflatex failed on {name}:\n{log}\n--- document ---\n{tex}"
+    );
+}
+
+#[test]
+fn checked_documents_compile() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let paths = vec![root.join("derivations"), root.join("tests/check/fail")];
+    let reports = crate::check::check_paths(&paths, &crate::check::Options::default());
+    assert!(!reports.is_empty());
+    let mut all = String::new();
+    for r in &reports {
+        let name = Path::new(&r.path)
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let tex = latex::document(r);
+        if r.ast.is_some() && !r.diagnostics.is_empty() {
+            assert!(
+                tex.contains("\\begin{quote}"),
+                "{name}: diagnostics not shown\n{tex}"
+            );
+        }
+        if r.failed() > 0 {
+            assert!(
+                tex.contains("[not verified]"),
+                "{name}: failures not marked\n{tex}"
+            );
+        }
+        compile(&format!("checked-{name}"), &tex);
+        all.push_str(&markdown::document(r));
+        all.push_str(&human::report(r, true));
+        all.push_str(&github::report(r));
+        all.push_str(&json::report(r).to_string());
+    }
+    all.push_str(&human::summary(&reports));
+    if let Ok(dir) = std::env::var("RIGOR_RENDER_DUMP") {
+        for r in &reports {
+            let name = Path::new(&r.path)
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            let _ = std::fs::write(
+                Path::new(&dir).join(format!("{name}.tex")),
+                latex::document(r),
+            );
+            let _ = std::fs::write(
+                Path::new(&dir).join(format!("{name}.md")),
+                markdown::document(r),
+            );
+        }
+        let _ = std::fs::write(Path::new(&dir).join("all.txt"), &all);
     }
 }

@@ -101,8 +101,11 @@ fn accented(c: char) -> Option<(&'static str, char)> {
 /// compiles with pdflatex and never opens or closes a group.
 pub(crate) fn latex_text(s: &str) -> String {
     let mut out = String::with_capacity(s.len() + 8);
+    let mut prev = ' ';
     for c in s.chars() {
         match c {
+            '"' if prev.is_whitespace() || "([{".contains(prev) => out.push_str("``"),
+            '"' => out.push_str("''"),
             '\\' => out.push_str("\\textbackslash{}"),
             '{' => out.push_str("\\{"),
             '}' => out.push_str("\\}"),
@@ -128,6 +131,7 @@ pub(crate) fn latex_text(s: &str) -> String {
                 }
             }
         }
+        prev = c;
     }
     out
 }
@@ -164,21 +168,24 @@ pub(crate) fn markdown_inline(s: &str) -> String {
     out
 }
 
-/// User text that starts a Markdown paragraph or heading: [`markdown_inline`], and a
-/// leading `#`, `-`, `+`, `=`, `~` or `12.` cannot start a block.
+/// User text that starts a Markdown paragraph or heading: [`markdown_inline`], made
+/// [`block_safe`].
 pub(crate) fn markdown_text(s: &str) -> String {
-    let mut out = markdown_inline(s);
-    let starts_block = out.starts_with(['#', '-', '+', '=', '~']) || ordered_list_start(&out);
-    if starts_block {
-        out.insert(0, '\\');
-    }
-    out
+    block_safe(markdown_inline(s))
 }
 
-/// `12.` or `12)` at the start (a Markdown ordered-list marker).
-fn ordered_list_start(s: &str) -> bool {
-    let rest = s.trim_start_matches(|c: char| c.is_ascii_digit());
-    rest.len() < s.len() && rest.starts_with(['.', ')'])
+/// Escaped Markdown text that cannot start a block: a leading `#`, `-`, `+`, `=`, `~`
+/// or `>` gets a backslash, and in `12.` or `12)` the `.` or `)` does.
+pub(crate) fn block_safe(mut s: String) -> String {
+    if s.starts_with(['#', '-', '+', '=', '~', '>']) {
+        s.insert(0, '\\');
+    } else {
+        let digits = s.len() - s.trim_start_matches(|c: char| c.is_ascii_digit()).len();
+        if digits > 0 && s.get(digits..).is_some_and(|r| r.starts_with(['.', ')'])) {
+            s.insert(digits, '\\');
+        }
+    }
+    s
 }
 
 /// A message that may hold `code spans`, for inside a Markdown paragraph: text outside
