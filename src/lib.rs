@@ -20,6 +20,7 @@
 pub mod syntax;
 pub mod normal;
 pub mod calculus;
+pub mod solve;
 pub mod lower;
 pub mod interval;
 pub mod decide;

@@ -10,7 +10,11 @@ use super::atom::AtomId;
 use super::mono::Mono;
 use super::poly::{Poly, Q};
 use super::Limit;
-use num_traits::One;
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_traits::{One, Zero};
+use std::collections::btree_map::Entry;
+use std::collections::BTreeMap;
 
 /// `a / b` when `b` divides `a` exactly, else `None`.
 pub fn div_exact(a: &Poly, b: &Poly) -> Result<Option<Poly>, Limit> {
@@ -20,26 +24,166 @@ pub fn div_exact(a: &Poly, b: &Poly) -> Result<Option<Poly>, Limit> {
     if let Some(c) = b.as_constant() {
         return Ok(Some(a.scale(&c.recip())));
     }
+    if b.len() == 1 {
+        let (m, c) = &b.terms()[0];
+        return Ok(a.div_mono(m).map(|q| q.scale(&c.recip())));
+    }
     let Some((mb, cb)) = b.lead().cloned() else {
         return Ok(None);
     };
     let cb_inv = cb.recip();
+    // The remainder as an ordered map: each quotient term costs |b| updates, not |a|.
+    let mut r: BTreeMap<Mono, Q> = a.terms().iter().cloned().collect();
+    let rest: Vec<(Mono, Q)> = b.terms()[..b.len() - 1].to_vec();
     let mut q_terms: Vec<(Mono, Q)> = Vec::new();
-    let mut r = a.clone();
-    let mut steps = 0usize;
-    while let Some((mr, cr)) = r.lead().cloned() {
+    while let Some((mr, cr)) = r.pop_last() {
         let Some(m) = mr.div(&mb) else {
             return Ok(None);
         };
         let c = &cr * &cb_inv;
-        r = r.sub(&b.mul_term(&m, &c)?);
+        for (mt, ct) in &rest {
+            let key = mt.mul(&m).ok_or(Limit::Exponent)?;
+            let v = ct * &c;
+            match r.entry(key) {
+                Entry::Occupied(mut e) => {
+                    *e.get_mut() -= v;
+                    if e.get().is_zero() {
+                        e.remove();
+                    }
+                }
+                Entry::Vacant(e) => {
+                    e.insert(-v);
+                }
+            }
+        }
         q_terms.push((m, c));
-        steps += 1;
-        if steps > super::poly::max_terms() {
+        if q_terms.len() > super::poly::max_terms() {
             return Err(Limit::Terms);
         }
     }
     Ok(Some(Poly::from_terms(q_terms)))
+}
+
+/// Proves `gcd(a, b)` constant by evaluation, when it is: for every atom `v` in both,
+/// the other atoms are set to values modulo the prime 2⁶¹ − 1 at which neither leading
+/// coefficient in `v` vanishes, and the gcd of the univariate images has degree 0. (If
+/// `G` divides both, its image divides both images and keeps its degree in `v`.) This
+/// only ever proves coprimality; `false` means "not shown", and the exact gcd runs.
+fn coprime_by_evaluation(a: &Poly, b: &Poly) -> bool {
+    let aa = a.atoms();
+    let common: Vec<AtomId> = b.atoms().into_iter().filter(|v| aa.binary_search(v).is_ok()).collect();
+    'vars: for &v in &common {
+        for attempt in 0..3u64 {
+            let value = |x: AtomId| -> u64 {
+                let h = (u64::from(x) + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ attempt.wrapping_mul(0xD6E8_FEB8_6659_FD93);
+                h % (P - 2) + 2
+            };
+            let (Some(ua), Some(ub)) = (image_mod_p(a, v, &value), image_mod_p(b, v, &value)) else {
+                continue;
+            };
+            if gcd_degree_mod_p(ua, ub) == 0 {
+                continue 'vars;
+            }
+            return false;
+        }
+        return false;
+    }
+    true
+}
+
+/// The Mersenne prime 2⁶¹ − 1.
+const P: u64 = (1 << 61) - 1;
+
+fn mulmod(a: u64, b: u64) -> u64 {
+    ((u128::from(a) * u128::from(b)) % u128::from(P)) as u64
+}
+
+fn powmod(mut b: u64, mut e: u64) -> u64 {
+    let mut r = 1u64;
+    while e > 0 {
+        if e & 1 == 1 {
+            r = mulmod(r, b);
+        }
+        b = mulmod(b, b);
+        e >>= 1;
+    }
+    r
+}
+
+fn invmod(a: u64) -> Option<u64> {
+    (a != 0).then(|| powmod(a, P - 2))
+}
+
+fn q_mod_p(q: &Q) -> Option<u64> {
+    let pb = BigInt::from(P);
+    let n = u64::try_from(q.numer().mod_floor(&pb)).ok()?;
+    let d = u64::try_from(q.denom().mod_floor(&pb)).ok()?;
+    Some(mulmod(n, invmod(d)?))
+}
+
+/// The image of `p` in 𝔽ₚ[v] with every other atom set by `value`, if its degree in `v`
+/// is kept.
+fn image_mod_p(p: &Poly, v: AtomId, value: &dyn Fn(AtomId) -> u64) -> Option<Vec<u64>> {
+    let deg = p.degree_in(v) as usize;
+    if deg > 100_000 {
+        return None;
+    }
+    let mut out = vec![0u64; deg + 1];
+    let mut cache: Vec<(AtomId, u64)> = Vec::new();
+    for (m, q) in p.terms() {
+        let mut t = q_mod_p(q)?;
+        let mut e = 0usize;
+        for &(x, k) in m.pairs() {
+            if x == v {
+                e = k as usize;
+            } else {
+                let base = match cache.iter().find(|c| c.0 == x) {
+                    Some(c) => c.1,
+                    None => {
+                        let val = value(x);
+                        cache.push((x, val));
+                        val
+                    }
+                };
+                t = mulmod(t, powmod(base, u64::from(k)));
+            }
+        }
+        let slot = out.get_mut(e)?;
+        *slot = (*slot + t) % P;
+    }
+    (*out.last()? != 0).then_some(out)
+}
+
+/// Degree of the gcd of two dense univariate polynomials over 𝔽ₚ (coefficients ascending).
+fn gcd_degree_mod_p(mut a: Vec<u64>, mut b: Vec<u64>) -> usize {
+    fn trim(p: &mut Vec<u64>) {
+        while p.last() == Some(&0) {
+            p.pop();
+        }
+    }
+    trim(&mut a);
+    trim(&mut b);
+    while !b.is_empty() {
+        let Some(inv) = b.last().copied().and_then(invmod) else {
+            break;
+        };
+        while a.len() >= b.len() && !a.is_empty() {
+            let Some(&la) = a.last() else {
+                break;
+            };
+            let f = mulmod(la, inv);
+            let shift = a.len() - b.len();
+            for (i, c) in b.iter().enumerate() {
+                if let Some(slot) = a.get_mut(i + shift) {
+                    *slot = (*slot + P - mulmod(*c, f)) % P;
+                }
+            }
+            a.pop();
+            trim(&mut a);
+        }
+        std::mem::swap(&mut a, &mut b);
+    }
+    a.len().saturating_sub(1)
 }
 
 /// The monic greatest common divisor (`gcd(0, 0) = 0`).
@@ -60,7 +204,11 @@ pub fn gcd(a: &Poly, b: &Poly) -> Result<Poly, Limit> {
     let gm = ma.gcd(&mb);
     let a1 = a.div_mono(&ma).unwrap_or_else(|| a.clone());
     let b1 = b.div_mono(&mb).unwrap_or_else(|| b.clone());
-    let g = gcd_nomono(&a1, &b1)?;
+    let g = if a1.len() > 1 && b1.len() > 1 && coprime_by_evaluation(&a1, &b1) {
+        Poly::one()
+    } else {
+        gcd_nomono(&a1, &b1)?
+    };
     Ok(g.mul_term(&gm, &Q::one())?.monic())
 }
 
