@@ -2,6 +2,7 @@
 //! checked counterexample, else undecided. Nothing is ever decided equal by sampling.
 
 use crate::interval::{Interval, Prec};
+use crate::lower::Need;
 use crate::normal::atom::{self, Atom, AtomId};
 use crate::normal::print::plain;
 use crate::normal::{Assumptions, Poly, Rat, Sign, Q};
@@ -64,6 +65,12 @@ pub enum Verdict {
 
 /// Decides `a = b` under the declared signs.
 pub fn decide(a: &Rat, b: &Rat, s: &Assumptions) -> Verdict {
+    decide_where(a, b, s, &[])
+}
+
+/// Decides `a = b` where the sides are defined: a counterexample must also satisfy
+/// `defined` (divisors nonzero, arguments of `ln` positive, of square roots nonnegative).
+pub fn decide_where(a: &Rat, b: &Rat, s: &Assumptions, defined: &[(Rat, Need)]) -> Verdict {
     let d = match a.sub(b) {
         Ok(d) => d,
         Err(e) => {
@@ -76,7 +83,7 @@ pub fn decide(a: &Rat, b: &Rat, s: &Assumptions) -> Verdict {
         return Verdict::Equal;
     }
     let exact = independent(&d);
-    let counterexample = find_counterexample(a, b, s);
+    let counterexample = find_counterexample_where(a, b, s, defined);
     if !exact && counterexample.is_none() {
         let dependent: Vec<String> = d
             .atoms()
@@ -142,7 +149,10 @@ pub fn diagnose(a: &Rat, b: &Rat, d: &Rat) -> Option<String> {
             } else {
                 "a missing or extra factor?"
             };
-            return Some(format!("the left side is {} × the right side ({note})", plain(&r)));
+            return Some(format!(
+                "the left side is {} × the right side ({note})",
+                plain(&r)
+            ));
         }
     }
     let terms_of = |r: &Rat| -> Vec<String> {
@@ -155,9 +165,16 @@ pub fn diagnose(a: &Rat, b: &Rat, d: &Rat) -> Option<String> {
     };
     if d.num().len() <= 3 {
         let n = d.num().len();
-        let (s, them) = if n == 1 { ("", "the term") } else { ("s", "the terms") };
+        let (s, them) = if n == 1 {
+            ("", "the term")
+        } else {
+            ("s", "the terms")
+        };
         if has_terms(a, d) {
-            return Some(format!("the left side has {n} extra term{s}: {}", terms_of(d).join(", ")));
+            return Some(format!(
+                "the left side has {n} extra term{s}: {}",
+                terms_of(d).join(", ")
+            ));
         }
         if has_terms(b, &d.neg()) {
             return Some(format!(
@@ -165,14 +182,21 @@ pub fn diagnose(a: &Rat, b: &Rat, d: &Rat) -> Option<String> {
                 terms_of(&d.neg()).join(", ")
             ));
         }
-        return Some(format!("the two sides differ by {} (left − right)", plain(d)));
+        return Some(format!(
+            "the two sides differ by {} (left − right)",
+            plain(d)
+        ));
     }
     None
 }
 
 /// Whether every term of `t` is a term of `r` (over the same denominator).
 fn has_terms(r: &Rat, t: &Rat) -> bool {
-    r.den() == t.den() && t.num().terms().iter().all(|tt| r.num().terms().iter().any(|x| x == tt))
+    r.den() == t.den()
+        && t.num()
+            .terms()
+            .iter()
+            .all(|tt| r.num().terms().iter().any(|x| x == tt))
 }
 
 /// Symbols occurring anywhere in `r`, arguments of functions included.
@@ -223,6 +247,16 @@ const CANDIDATES: [(i64, i64); 12] = [
 /// Searches a few points that respect the declared signs for one where `a` and `b`
 /// provably differ (exact rationals, or disjoint rigorous enclosures).
 pub fn find_counterexample(a: &Rat, b: &Rat, s: &Assumptions) -> Option<Counterexample> {
+    find_counterexample_where(a, b, s, &[])
+}
+
+/// [`find_counterexample`] at points where every condition of `defined` provably holds.
+pub fn find_counterexample_where(
+    a: &Rat,
+    b: &Rat,
+    s: &Assumptions,
+    defined: &[(Rat, Need)],
+) -> Option<Counterexample> {
     let mut syms = Vec::new();
     symbols_in(a, &mut syms);
     symbols_in(b, &mut syms);
@@ -246,6 +280,16 @@ pub fn find_counterexample(a: &Rat, b: &Rat, s: &Assumptions) -> Option<Countere
             prec: Prec::default(),
             memo: HashMap::new(),
         };
+        let holds = defined.iter().all(|(c, need)| {
+            ev.rat(c).is_some_and(|v| match need {
+                Need::NonZero => v.is_positive() || v.is_negative(),
+                Need::Positive => v.is_positive(),
+                Need::NonNegative => v.is_positive() || (v.lo() == v.hi() && v.lo().is_zero()),
+            })
+        });
+        if !holds {
+            continue;
+        }
         let (Some(va), Some(vb)) = (ev.rat(a), ev.rat(b)) else {
             continue;
         };
@@ -352,4 +396,3 @@ impl<'a> Evaluator<'a> {
         }
     }
 }
-

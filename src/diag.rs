@@ -41,7 +41,12 @@ pub struct Diagnostic {
 
 impl Diagnostic {
     /// An error with a primary span.
-    pub fn error(code: &'static str, message: impl Into<String>, span: Span, label: impl Into<String>) -> Diagnostic {
+    pub fn error(
+        code: &'static str,
+        message: impl Into<String>,
+        span: Span,
+        label: impl Into<String>,
+    ) -> Diagnostic {
         Diagnostic {
             severity: Severity::Error,
             code,
@@ -87,9 +92,17 @@ pub fn render(d: &Diagnostic, path: &str, src: &str) -> String {
         let line_chars = text.chars().count();
         let start = col - 1;
         let (end_line, end_col) = line_col(src, span.end.max(span.start));
-        let end = if end_line == line { end_col - 1 } else { line_chars };
+        let end = if end_line == line {
+            end_col - 1
+        } else {
+            line_chars
+        };
         let width = end.saturating_sub(start).max(1);
-        let marker = if width == 1 { "^".to_string() } else { "^".repeat(width) };
+        let marker = if width == 1 {
+            "^".to_string()
+        } else {
+            "^".repeat(width)
+        };
         let indent: String = text
             .chars()
             .take(start)

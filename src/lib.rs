@@ -17,13 +17,13 @@
 //! ```
 #![warn(missing_docs)]
 
-pub mod syntax;
-pub mod normal;
 pub mod calculus;
-pub mod solve;
-pub mod lower;
-pub mod interval;
+pub mod check;
 pub mod decide;
 pub mod diag;
-pub mod check;
+pub mod interval;
+pub mod lower;
+pub mod normal;
 pub mod render;
+pub mod solve;
+pub mod syntax;

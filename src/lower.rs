@@ -7,6 +7,7 @@ use crate::normal::atom::{self, Atom};
 use crate::normal::subst::{depends_on, subst_atom};
 use crate::normal::{func, trig, Assumptions, NormError, Rat, Sign};
 use crate::syntax::ast::{BinOp, Expr, ExprKind, Func, Span};
+use num_integer::Integer;
 use num_traits::{Signed, ToPrimitive};
 use std::collections::{HashMap, HashSet};
 use std::fmt;
@@ -33,6 +34,8 @@ pub struct LowerError {
     pub message: String,
     /// Whether this is a resource limit (rather than bad input).
     pub limit: bool,
+    /// Whether the time budget ran out (the claim is undecided, not bad input).
+    pub timeout: bool,
 }
 
 impl fmt::Display for LowerError {
@@ -47,6 +50,7 @@ fn err(span: Span, e: NormError) -> LowerError {
     LowerError {
         span,
         limit: matches!(e, NormError::Limit(_)),
+        timeout: e == NormError::Limit(crate::normal::Limit::Time),
         message: e.to_string(),
     }
 }
@@ -58,6 +62,7 @@ fn int_err(span: Span, e: IntError) -> LowerError {
             span,
             message: e.to_string(),
             limit: false,
+            timeout: false,
         },
     }
 }
@@ -67,14 +72,29 @@ fn msg(span: Span, m: impl Into<String>) -> LowerError {
         span,
         message: m.into(),
         limit: false,
+        timeout: false,
     }
 }
 
-/// A division whose divisor is not a nonzero constant, recorded for side conditions.
+/// What a recorded condition requires of its value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Need {
+    /// A divisor: `!= 0`.
+    NonZero,
+    /// The argument of `ln`: `> 0`.
+    Positive,
+    /// The argument of a square (even) root: `>= 0`.
+    NonNegative,
+}
+
+/// A condition for an expression to be defined (a divisor, the argument of `ln` or of
+/// a square root) that the declared signs do not settle, recorded for side conditions.
 #[derive(Clone, Debug)]
 pub struct Divisor {
-    /// The divisor's normal form.
+    /// The value the condition is about.
     pub value: Rat,
+    /// What it must be.
+    pub need: Need,
     /// Where it was written.
     pub span: Span,
 }
@@ -102,9 +122,23 @@ impl<'a> Lowerer<'a> {
     }
 
     fn note_divisor(&mut self, d: &Rat, span: Span) {
-        if d.as_constant().is_none() && !self.signs().rat(d).is_nonzero() {
+        self.note(d, Need::NonZero, span);
+    }
+
+    fn note(&mut self, d: &Rat, need: Need, span: Span) {
+        if d.as_constant().is_some() {
+            return;
+        }
+        let s = self.signs().rat(d);
+        let settled = match need {
+            Need::NonZero => s.is_nonzero(),
+            Need::Positive => s == Sign::Pos,
+            Need::NonNegative => s.is_nonneg(),
+        };
+        if !settled {
             self.divisors.push(Divisor {
                 value: d.clone(),
+                need,
                 span,
             });
         }
@@ -154,6 +188,11 @@ impl<'a> Lowerer<'a> {
                         if y.as_constant().is_some_and(|q| q.is_negative()) {
                             self.note_divisor(&x, a.span);
                         }
+                        if y.as_constant()
+                            .is_some_and(|q| !q.is_integer() && q.denom().is_even())
+                        {
+                            self.note(&x, Need::NonNegative, a.span);
+                        }
                         func::pow(&x, &y, self.signs())
                     }
                 };
@@ -164,8 +203,7 @@ impl<'a> Lowerer<'a> {
     }
 
     fn arg<'e>(&self, args: &'e [Expr], i: usize, sp: Span) -> Result<&'e Expr, LowerError> {
-        args.get(i)
-            .ok_or_else(|| msg(sp, "missing argument"))
+        args.get(i).ok_or_else(|| msg(sp, "missing argument"))
     }
 
     fn var_name(&self, e: &Expr, what: &str) -> Result<String, LowerError> {
@@ -192,6 +230,11 @@ impl<'a> Lowerer<'a> {
             Func::Sqrt | Func::Sin | Func::Cos | Func::Tan | Func::Exp | Func::Ln | Func::Abs => {
                 let a = self.arg(args, 0, sp)?;
                 let u = self.lower(a)?;
+                match f {
+                    Func::Sqrt => self.note(&u, Need::NonNegative, a.span),
+                    Func::Ln => self.note(&u, Need::Positive, a.span),
+                    _ => {}
+                }
                 let r = match f {
                     Func::Sqrt => func::sqrt(&u, &s),
                     Func::Sin => trig::sin(&u),
@@ -199,7 +242,10 @@ impl<'a> Lowerer<'a> {
                     Func::Tan => {
                         let c = trig::cos(&u).map_err(|e| err(sp, e))?;
                         if c.is_zero() {
-                            return Err(msg(sp, "tan is undefined here: the cosine is exactly zero"));
+                            return Err(msg(
+                                sp,
+                                "tan is undefined here: the cosine is exactly zero",
+                            ));
                         }
                         self.note_divisor(&c, sp);
                         trig::tan(&u)
@@ -222,7 +268,10 @@ impl<'a> Lowerer<'a> {
                             .and_then(|q| q.to_integer().to_u32())
                             .filter(|n| *n <= 1000)
                             .ok_or_else(|| {
-                                msg(ne.span, "the order of diff must be a whole number from 0 to 1000")
+                                msg(
+                                    ne.span,
+                                    "the order of diff must be a whole number from 0 to 1000",
+                                )
                             })?
                     }
                 };
@@ -336,7 +385,6 @@ pub fn sign_of_decl(d: crate::syntax::ast::SignDecl) -> Sign {
     }
 }
 
-
 /// Builds a body from its declaration, lowering the mass element and the bounds.
 pub fn build_body(
     name: &str,
@@ -387,9 +435,7 @@ pub fn build_body(
                         format!("the mass element must be a density times d{n} (once) for each coordinate"),
                     ));
                 }
-                density = density
-                    .div(&Rat::atom(d))
-                    .map_err(|e| err(dm.span, e))?;
+                density = density.div(&Rat::atom(d)).map_err(|e| err(dm.span, e))?;
             }
             Ok(Body::Concrete {
                 density,

@@ -17,6 +17,9 @@ struct Cli {
     /// Deepest nesting of parentheses and calls accepted.
     #[arg(long, global = true, default_value_t = 200)]
     max_depth: usize,
+    /// Wall-clock budget, in seconds, per claim (`check`) or per command (`simplify`, `equiv`).
+    #[arg(long, global = true, default_value_t = 10.0)]
+    timeout: f64,
 }
 
 /// Output format of `check`.
@@ -42,9 +45,6 @@ enum Command {
         /// Print how every verified link was justified.
         #[arg(long, short)]
         verbose: bool,
-        /// Wall-clock budget per claim, in seconds.
-        #[arg(long, default_value_t = 10.0)]
-        timeout: f64,
         /// Largest file accepted, in bytes.
         #[arg(long, default_value_t = 10_000_000)]
         max_file_size: u64,
@@ -110,6 +110,14 @@ fn main() -> ExitCode {
     let opts = rigor::syntax::ParseOptions {
         max_depth: cli.max_depth,
     };
+    let timeout = if cli.timeout.is_finite() && cli.timeout > 0.0 {
+        std::time::Duration::from_secs_f64(cli.timeout.min(1e6))
+    } else {
+        std::time::Duration::from_secs(10)
+    };
+    if !matches!(cli.command, Command::Check { .. }) {
+        rigor::normal::poly::set_deadline(Some(std::time::Instant::now() + timeout));
+    }
     let code = match cli.command {
         Command::Simplify {
             expr,
@@ -122,7 +130,6 @@ fn main() -> ExitCode {
             paths,
             format,
             verbose,
-            timeout,
             max_file_size,
         } => cli::check(&paths, format, verbose, timeout, max_file_size, &opts),
         Command::Latex { file, o } => cli::document(&file, o.as_deref(), true, &opts),

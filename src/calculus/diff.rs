@@ -168,4 +168,3 @@ pub fn diff_n(r: &Rat, wrt: &Wrt<'_>, n: u32, s: &Assumptions) -> Result<Rat, No
     }
     Ok(cur)
 }
-

@@ -3,15 +3,17 @@
 use super::load::{Exports, ImportError, Loader};
 use super::report::{ClaimReport, FileReport, Justification, LinkReport, Status};
 use super::scope::{undeclared, Decl, Scope};
-use super::solve::{apply_steps, eliminate, unknown_name, Elimination, Fact};
+use super::solve::{
+    apply_steps, contradiction, eliminate, unknown_name, zero_by_facts, Elimination, Fact,
+};
 use crate::calculus::{self, Wrt};
 use crate::decide::{decide, find_counterexample, Verdict};
-use crate::diag::{line_col, Diagnostic, Severity};
+use crate::diag::{Diagnostic, Severity};
 use crate::interval::Prec;
+use crate::lower::Need;
 use crate::lower::{build_body, sign_of_decl, Env, LowerError, Lowerer};
 use crate::normal::atom::{self, AtomId};
 use crate::normal::print::plain;
-use crate::normal::subst::subst_atom;
 use crate::normal::{Rat, Sign, Q};
 use crate::syntax::ast::{Assign, By, Chain, Expr, ExprKind, File, Item, RelOp, Span, StmtKind};
 use num_bigint::BigInt;
@@ -27,7 +29,7 @@ struct Known {
     label: Option<String>,
     fact: Fact,
     /// Divisors met while computing it.
-    divisors: Vec<Rat>,
+    divisors: Vec<(Rat, crate::lower::Need)>,
 }
 
 /// Walks one file.
@@ -41,6 +43,10 @@ pub struct Checker<'l, 'o> {
     labels: HashMap<String, Span>,
     exports: Exports,
     body_coords: HashMap<String, Vec<String>>,
+    /// Set when lowering ran out of time (the link is undecided).
+    timed_out: bool,
+    /// Byte offset of the start of every line, for line numbers.
+    line_starts: Vec<usize>,
 }
 
 impl<'l, 'o> Checker<'l, 'o> {
@@ -56,33 +62,66 @@ impl<'l, 'o> Checker<'l, 'o> {
             labels: HashMap::new(),
             exports: Exports::default(),
             body_coords: HashMap::new(),
+            timed_out: false,
+            line_starts: Vec::new(),
         }
     }
 
     fn error(&mut self, code: &'static str, msg: String, span: Span, label: &str) {
         self.report.input_error = true;
-        self.report.diagnostics.push(Diagnostic::error(code, msg, span, label));
+        self.report
+            .diagnostics
+            .push(Diagnostic::error(code, msg, span, label));
     }
 
     fn line(&self, span: Span) -> usize {
-        line_col(&self.report.source, span.start).0
+        match self.line_starts.binary_search(&span.start) {
+            Ok(i) => i + 1,
+            Err(i) => i,
+        }
     }
 
     /// Checks every statement; returns the report and what the file exports.
     pub fn run(mut self, file: File) -> (FileReport, Exports) {
+        self.line_starts = std::iter::once(0)
+            .chain(self.report.source.match_indices('\n').map(|(i, _)| i + 1))
+            .collect();
         for item in &file.items {
             if let Item::Stmt(st) = item {
                 self.statement(&st.kind, st.span);
             }
         }
         self.report.ast = Some(file);
+        for (name, d) in &self.scope.names {
+            match d {
+                Decl::Symbol => {
+                    let sign = self.env.signs.declared(atom::sym(name));
+                    self.exports.signs.insert(name.clone(), sign);
+                }
+                Decl::Time => self.exports.unknowns.push(name.clone()),
+                _ => {}
+            }
+        }
+        self.exports
+            .unknowns
+            .extend(self.scope.unknowns.iter().cloned());
+        if self.report.input_error {
+            self.exports.error = self
+                .report
+                .diagnostics
+                .iter()
+                .find(|d| d.severity == Severity::Error)
+                .map(|d| d.message.clone());
+        }
         (self.report, self.exports)
     }
 
     /// Reports undeclared names in `e`; true if all are declared.
     fn declared(&mut self, e: &Expr) -> bool {
         let coords = self.body_coords.clone();
-        let one_body = (coords.len() == 1).then(|| coords.values().next().cloned()).flatten();
+        let one_body = (coords.len() == 1)
+            .then(|| coords.values().next().cloned())
+            .flatten();
         let lookup = |n: &str| -> Option<Vec<String>> {
             if n == "dm" && !coords.contains_key("dm") {
                 return one_body.clone();
@@ -100,14 +139,14 @@ impl<'l, 'o> Checker<'l, 'o> {
         bad.is_empty()
     }
 
-    fn lower(&mut self, e: &Expr, divisors: &mut Vec<Rat>) -> Option<Rat> {
+    fn lower(&mut self, e: &Expr, divisors: &mut Vec<(Rat, crate::lower::Need)>) -> Option<Rat> {
         if !self.declared(e) {
             return None;
         }
         let mut lw = Lowerer::new(&self.env);
         match lw.lower(e) {
             Ok(v) => {
-                divisors.extend(lw.divisors.into_iter().map(|d| d.value));
+                divisors.extend(lw.divisors.into_iter().map(|d| (d.value, d.need)));
                 Some(v)
             }
             Err(err) => {
@@ -118,6 +157,17 @@ impl<'l, 'o> Checker<'l, 'o> {
     }
 
     fn lower_error(&mut self, e: LowerError) {
+        if e.timeout {
+            // Undecided, not bad input: the claim fails, the file is not malformed.
+            self.timed_out = true;
+            self.report.diagnostics.push(Diagnostic::error(
+                "E0902",
+                format!("not verified: {}", e.message),
+                e.span,
+                "undecided",
+            ));
+            return;
+        }
         let code = if e.limit { "E0901" } else { "E0101" };
         self.error(code, e.message, e.span, "");
     }
@@ -136,8 +186,16 @@ impl<'l, 'o> Checker<'l, 'o> {
             }
             return true;
         }
-        if name == "t" && !matches!(d, Decl::TimeVar) && self.scope.names.get("t") == Some(&Decl::TimeVar) {
-            self.error("E0203", "`t` is the time variable declared by `time`".into(), span, "");
+        if name == "t"
+            && !matches!(d, Decl::TimeVar)
+            && self.scope.names.get("t") == Some(&Decl::TimeVar)
+        {
+            self.error(
+                "E0203",
+                "`t` is the time variable declared by `time`".into(),
+                span,
+                "",
+            );
             return false;
         }
         self.scope.names.insert(name.to_string(), d);
@@ -200,7 +258,12 @@ impl<'l, 'o> Checker<'l, 'o> {
                             || "declare it first".to_string(),
                             |s| format!("did you mean `{s}`?"),
                         );
-                        self.error("E0201", format!("units for undeclared symbol `{}`", d.name.name), d.name.span, &hint);
+                        self.error(
+                            "E0201",
+                            format!("units for undeclared symbol `{}`", d.name.name),
+                            d.name.span,
+                            &hint,
+                        );
                     }
                 }
             }
@@ -256,11 +319,20 @@ impl<'l, 'o> Checker<'l, 'o> {
                 let label = self.new_label(label);
                 self.given(label, chain, span, is_constraint);
             }
-            StmtKind::Claim { label, chain, where_ } => {
+            StmtKind::Claim {
+                label,
+                chain,
+                where_,
+            } => {
                 let label = self.new_label(label);
                 self.claim(label, chain, where_, span);
             }
-            StmtKind::Use { labels, path, path_span, with } => self.import(labels, path, *path_span, with),
+            StmtKind::Use {
+                labels,
+                path,
+                path_span,
+                with,
+            } => self.import(labels, path, *path_span, with),
         }
     }
 
@@ -286,10 +358,16 @@ impl<'l, 'o> Checker<'l, 'o> {
                     prev = rhs;
                     continue;
                 }
-                if !value.atoms().iter().any(|a| self.is_unknown(*a)) && self.env.signs.rat(&value).is_nonzero() {
+                if !value.atoms().iter().any(|a| self.is_unknown(*a))
+                    && self.env.signs.rat(&value).is_nonzero()
+                {
                     self.report.diagnostics.push(Diagnostic::error(
                         "E0306",
-                        format!("this fact is false under the declared signs: {} = {}", plain(&prev), plain(&rhs)),
+                        format!(
+                            "this fact is false under the declared signs: {} = {}",
+                            plain(&prev),
+                            plain(&rhs)
+                        ),
                         link.span,
                         "the two sides can never be equal",
                     ));
@@ -333,7 +411,13 @@ impl<'l, 'o> Checker<'l, 'o> {
         atom::sym_name(a).is_some_and(|n| self.scope.is_unknown(&n))
     }
 
-    fn import(&mut self, labels: &[crate::syntax::ast::Label], path: &str, path_span: Span, with: &[Assign]) {
+    fn import(
+        &mut self,
+        labels: &[crate::syntax::ast::Label],
+        path: &str,
+        path_span: Span,
+        with: &[Assign],
+    ) {
         let dir = self.dir.clone();
         let exports = match self.loader.import(&dir, path) {
             Ok(e) => e,
@@ -342,35 +426,94 @@ impl<'l, 'o> Checker<'l, 'o> {
                 return;
             }
         };
-        let mut subs = Vec::new();
+        let mut subs: Vec<(AtomId, Rat)> = Vec::new();
         for a in with {
+            let name = &a.name.name;
+            let base = name.trim_end_matches('\'');
+            if exports.unknowns.iter().any(|u| u == name || u == base) {
+                self.error(
+                    "E0208",
+                    format!("`with` cannot set `{name}`: it is an unknown of \"{path}\""),
+                    a.name.span,
+                    "only parameters can be instantiated",
+                );
+                return;
+            }
             let mut d = Vec::new();
             let Some(v) = self.lower(&a.value, &mut d) else {
                 return;
             };
-            subs.push((atom::sym(&a.name.name), v));
+            let declared = exports.signs.get(name).copied().unwrap_or(Sign::Unknown);
+            if let Err(m) = respects_sign(name, declared, &v, &self.env.signs) {
+                self.error("E0208", format!("{m} (in \"{path}\")"), a.value.span, "");
+                return;
+            }
+            subs.push((atom::sym(name), v));
         }
+        let map = |a: AtomId| subs.iter().find(|s| s.0 == a).map(|s| s.1.clone());
         for l in labels {
             let Some(eqs) = exports.claims.get(&l.name) else {
-                self.error(
-                    "E0206",
-                    format!("\"{path}\" has no verified claim [{}]", l.name),
-                    l.span,
-                    "not found, or not verified there",
-                );
+                let why = match &exports.error {
+                    Some(e) => format!("\"{path}\" does not check: {e}"),
+                    None => format!("\"{path}\" has no verified equation [{}]", l.name),
+                };
+                self.error("E0206", why, l.span, "not found, or not verified there");
                 continue;
             };
             let label = self.new_label(&Some(l.clone()));
             for eq in eqs {
-                let mut v = eq.clone();
-                for (x, val) in &subs {
-                    match subst_atom(&v, *x, val, &self.env.signs) {
-                        Ok(r) => v = r,
+                let v = if subs.is_empty() {
+                    eq.clone()
+                } else {
+                    match crate::normal::subst::Subst::new(&map, &self.env.signs).rat(eq) {
+                        Ok(r) => r,
                         Err(e) => {
                             self.error("E0101", e.to_string(), l.span, "");
                             return;
                         }
                     }
+                };
+                // Symbols left as they are must carry at least the sign the source assumed.
+                let mut syms = Vec::new();
+                crate::decide::symbols_in(&v, &mut syms);
+                for x in syms {
+                    let Some(name) = atom::sym_name(x) else {
+                        continue;
+                    };
+                    let need = exports.signs.get(&name).copied().unwrap_or(Sign::Unknown);
+                    let have = self.env.signs.declared(x);
+                    let implied = match need {
+                        Sign::Unknown => true,
+                        Sign::Pos => have == Sign::Pos,
+                        Sign::NonNeg => matches!(have, Sign::Pos | Sign::NonNeg),
+                        Sign::NonZero => matches!(have, Sign::Pos | Sign::NonZero),
+                        _ => have == need,
+                    };
+                    if !implied {
+                        self.error(
+                            "E0208",
+                            format!("[{}] from \"{path}\" holds when `{name}` has the sign declared there, which this file does not declare", l.name),
+                            l.span,
+                            "declare the same sign here, or instantiate it with `with`",
+                        );
+                        return;
+                    }
+                }
+                if !v.atoms().iter().any(|a| self.is_unknown(*a))
+                    && !v.is_zero()
+                    && sign_of(&v, &self.env.signs).is_nonzero()
+                {
+                    self.error(
+                        "E0306",
+                        format!(
+                            "[{}] from \"{path}\", instantiated here, is false: {} = 0",
+                            l.name,
+                            plain(&v)
+                        ),
+                        l.span,
+                        "the instantiation contradicts the imported fact",
+                    );
+                    return;
                 }
                 self.facts.push(Known {
                     label: label.clone(),
@@ -386,25 +529,69 @@ impl<'l, 'o> Checker<'l, 'o> {
 
     fn claim(&mut self, label: Option<String>, chain: &Chain, where_: &[Assign], span: Span) {
         let line = self.line(span);
-        let mut claim = ClaimReport {
+        let claim = ClaimReport {
             label: label.clone(),
             span,
             line,
             links: Vec::new(),
         };
         let deadline = Instant::now() + self.loader.opts.timeout;
+        crate::normal::poly::set_deadline(Some(deadline));
+        self.timed_out = false;
+        self.claim_inner(label, chain, where_, claim, deadline);
+        crate::normal::poly::set_deadline(None);
+    }
+
+    fn claim_inner(
+        &mut self,
+        label: Option<String>,
+        chain: &Chain,
+        where_: &[Assign],
+        mut claim: ClaimReport,
+        deadline: Instant,
+    ) {
+        let span = claim.span;
         // `where`: substitutions applied to the claim and to the facts it uses.
         let mut subs: Vec<(AtomId, Rat)> = Vec::new();
         for a in where_ {
             let mut d = Vec::new();
-            if !self.scope.is_declared(&a.name.name) {
-                self.declared(&Expr::new(ExprKind::Sym(a.name.name.clone()), a.name.span));
+            let name = &a.name.name;
+            if !self.scope.is_declared(name) {
+                self.declared(&Expr::new(ExprKind::Sym(name.clone()), a.name.span));
+                return self.push_error_claim(claim, chain);
+            }
+            if self.scope.is_unknown(name) {
+                self.error(
+                    "E0207",
+                    format!("`where` cannot set the unknown `{name}`"),
+                    a.name.span,
+                    "`where` picks a special case of the parameters; the facts determine the unknowns",
+                );
+                return self.push_error_claim(claim, chain);
+            }
+            let x = atom::sym(name);
+            if subs.iter().any(|s| s.0 == x) {
+                self.error(
+                    "E0207",
+                    format!("`{name}` is set twice in this `where`"),
+                    a.name.span,
+                    "",
+                );
                 return self.push_error_claim(claim, chain);
             }
             let Some(v) = self.lower(&a.value, &mut d) else {
                 return self.push_error_claim(claim, chain);
             };
-            subs.push((atom::sym(&a.name.name), v));
+            if let Err(m) = respects_sign(name, self.env.signs.declared(x), &v, &self.env.signs) {
+                self.error(
+                    "E0207",
+                    m,
+                    a.value.span,
+                    "this value does not respect the declared sign",
+                );
+                return self.push_error_claim(claim, chain);
+            }
+            subs.push((x, v));
         }
         let mut divs = Vec::new();
         let Some(first) = self.lower(&chain.first, &mut divs) else {
@@ -415,7 +602,11 @@ impl<'l, 'o> Checker<'l, 'o> {
         let mut new_facts = Vec::new();
         let mut all_ok = true;
         for (i, link) in chain.links.iter().enumerate() {
-            let span = if i == 0 { chain.first.span.to(link.span) } else { link.span };
+            let span = if i == 0 {
+                chain.first.span.to(link.span)
+            } else {
+                link.span
+            };
             let mut divs = Vec::new();
             let Some(rhs) = self.lower(&link.rhs, &mut divs) else {
                 claim.links.push(LinkReport {
@@ -423,7 +614,11 @@ impl<'l, 'o> Checker<'l, 'o> {
                     op: link.op,
                     lhs: None,
                     rhs: None,
-                    status: Status::Error,
+                    status: if self.timed_out {
+                        Status::Undecided
+                    } else {
+                        Status::Error
+                    },
                 });
                 all_ok = false;
                 break;
@@ -477,14 +672,23 @@ impl<'l, 'o> Checker<'l, 'o> {
     }
 
     fn push_error_claim(&mut self, mut claim: ClaimReport, chain: &Chain) {
+        let status = if self.timed_out {
+            Status::Undecided
+        } else {
+            Status::Error
+        };
         for (i, link) in chain.links.iter().enumerate() {
-            let span = if i == 0 { chain.first.span.to(link.span) } else { link.span };
+            let span = if i == 0 {
+                chain.first.span.to(link.span)
+            } else {
+                link.span
+            };
             claim.links.push(LinkReport {
                 span,
                 op: link.op,
                 lhs: None,
                 rhs: None,
-                status: Status::Error,
+                status: status.clone(),
             });
         }
         self.report.claims.push(claim);
@@ -515,9 +719,16 @@ impl<'l, 'o> Checker<'l, 'o> {
                                 sc.names.insert(k.clone(), Decl::Symbol);
                             }
                             sc.suggest(&l.name)
-                                .map_or("no fact before this line has that label".into(), |s| format!("did you mean [{s}]?"))
+                                .map_or("no fact before this line has that label".into(), |s| {
+                                    format!("did you mean [{s}]?")
+                                })
                         };
-                        self.error("E0205", format!("unknown label [{}]", l.name), l.span, &hint);
+                        self.error(
+                            "E0205",
+                            format!("unknown label [{}]", l.name),
+                            l.span,
+                            &hint,
+                        );
                         bad = true;
                     }
                     out.extend(found);
@@ -541,50 +752,72 @@ impl<'l, 'o> Checker<'l, 'o> {
         span: Span,
         by: Option<&By>,
         subs: &[(AtomId, Rat)],
-        divisors: &[Rat],
+        divisors: &[(Rat, crate::lower::Need)],
         deadline: Instant,
     ) -> Result<Status, Diagnostic> {
-        let Ok(facts) = self.facts_for(by) else {
-            return Ok(Status::Error);
-        };
         let signs = self.env.signs.clone();
+        // All `where` substitutions at once (simultaneous, not one after another).
+        let map = |a: AtomId| subs.iter().find(|s| s.0 == a).map(|s| s.1.clone());
         let apply = |r: &Rat| -> Result<Rat, String> {
-            let mut v = r.clone();
-            for (x, val) in subs {
-                v = subst_atom(&v, *x, val, &signs).map_err(|e| e.to_string())?;
+            if subs.is_empty() {
+                return Ok(r.clone());
             }
-            Ok(v)
+            crate::normal::subst::Subst::new(&map, &signs)
+                .rat(r)
+                .map_err(|e| e.to_string())
         };
         let (a, b) = match (apply(lhs), apply(rhs)) {
             (Ok(a), Ok(b)) => (a, b),
             (Err(e), _) | (_, Err(e)) => {
-                return Err(Diagnostic::error("E0101", format!("the `where` substitution fails: {e}"), span, ""))
+                return Err(Diagnostic::error(
+                    "E0101",
+                    format!("the `where` substitution fails: {e}"),
+                    span,
+                    "",
+                ))
             }
+        };
+        let diff = a
+            .sub(&b)
+            .map_err(|e| Diagnostic::error("E0101", e.to_string(), span, ""))?;
+        if diff.is_zero() && divisors.is_empty() && link.op == RelOp::Eq {
+            // An identity with nothing to assume: no facts needed.
+            return Ok(Status::Verified {
+                how: Justification::Identity,
+                side_conditions: Vec::new(),
+            });
+        }
+        let Ok(facts) = self.facts_for(by) else {
+            return Ok(Status::Error);
         };
         let mut used_facts = Vec::new();
         let mut fact_divs = Vec::new();
         for k in &facts {
             if let Ok(v) = apply(&k.fact.value) {
-                used_facts.push(Fact { value: v, name: k.fact.name.clone() });
+                used_facts.push(Fact {
+                    value: v,
+                    name: k.fact.name.clone(),
+                });
                 fact_divs.extend(k.divisors.iter().cloned());
             }
         }
         let scope = self.scope.clone();
         let is_unknown = |x: AtomId| atom::sym_name(x).is_some_and(|n| scope.is_unknown(&n));
-        let diff = a.sub(&b).map_err(|e| Diagnostic::error("E0101", e.to_string(), span, ""))?;
         let elim = if diff.is_zero() {
             None
         } else {
             Some(
-                eliminate(&diff, &used_facts, &is_unknown, &signs, Some(deadline)).map_err(|e| match e {
-                    crate::normal::NormError::DivisionByZero => Diagnostic::error(
-                        "E0305",
-                        "under the facts, this step divides by zero",
-                        span,
-                        "a denominator here is zero once the facts are used",
-                    ),
-                    e => Diagnostic::error("E0901", e.to_string(), span, ""),
-                })?,
+                eliminate(&diff, &used_facts, &is_unknown, &signs, Some(deadline)).map_err(
+                    |e| match e {
+                        crate::normal::NormError::DivisionByZero => Diagnostic::error(
+                            "E0305",
+                            "under the facts, this step divides by zero",
+                            span,
+                            "a denominator here is zero once the facts are used",
+                        ),
+                        e => Diagnostic::error("E0901", e.to_string(), span, ""),
+                    },
+                )?,
             )
         };
         let steps = elim.as_ref().map_or(&[][..], |e| &e.steps[..]);
@@ -594,7 +827,17 @@ impl<'l, 'o> Checker<'l, 'o> {
             _ => (a.clone(), b.clone()),
         };
         let via: Vec<String> = {
-            let mut v: Vec<String> = steps.iter().map(|s| s.fact.trim_end_matches('\'').to_string()).collect();
+            let mut v: Vec<String> = steps
+                .iter()
+                .map(|s| s.fact.as_str())
+                .chain(elim.as_ref().and_then(|e| e.multiple_of.as_deref()))
+                .map(|f| {
+                    f.trim_end_matches('\'')
+                        .trim_start_matches('[')
+                        .trim_end_matches(']')
+                        .to_string()
+                })
+                .collect();
             v.dedup();
             let mut seen = HashSet::new();
             v.retain(|x| seen.insert(x.clone()));
@@ -607,27 +850,87 @@ impl<'l, 'o> Checker<'l, 'o> {
                 Justification::Facts(via.clone())
             }
         };
-        // Side conditions: divisors not shown nonzero by the signs.
-        let mut conditions: Vec<String> = Vec::new();
-        let mut all_divs: Vec<Rat> = divisors.iter().filter_map(|d| apply(d).ok()).collect();
+        // Facts that contradict each other prove anything: refuse to use them.
         if !via.is_empty() {
-            all_divs.extend(fact_divs.iter().filter_map(|d| apply(d).ok()));
-        }
-        all_divs.extend(steps.iter().filter_map(|s| s.divisor.clone()));
-        for d in &all_divs {
-            let reduced = reduce(d).unwrap_or_else(|_| d.clone());
-            if reduced.is_zero() {
+            if let Some(c) = contradiction(&used_facts, &signs) {
                 return Err(Diagnostic::error(
-                    "E0305",
-                    format!("this step divides by {}, which is zero by the facts", plain(d)),
+                    "E0306",
+                    format!("the facts in scope contradict each other: with the others, {c} says a nonzero quantity is zero"),
                     span,
-                    "division by zero",
-                ));
+                    "checked against contradictory facts",
+                )
+                .note("nothing can be verified from contradictory facts; check the givens"));
             }
-            let Some(essential) = essential_factor(&reduced, &signs) else {
-                continue;
+        }
+        // Side conditions: divisors (and arguments of ln and square roots) the signs do not settle.
+        let all_scope: Vec<Fact> = self
+            .facts
+            .iter()
+            .filter_map(|k| {
+                apply(&k.fact.value).ok().map(|v| Fact {
+                    value: v,
+                    name: k.fact.name.clone(),
+                })
+            })
+            .collect();
+        let mut conditions: Vec<String> = Vec::new();
+        let mut all_divs: Vec<(Rat, Need)> = divisors
+            .iter()
+            .filter_map(|d| apply(&d.0).ok().map(|v| (v, d.1)))
+            .collect();
+        if !via.is_empty() {
+            all_divs.extend(
+                fact_divs
+                    .iter()
+                    .filter_map(|d| apply(&d.0).ok().map(|v| (v, d.1))),
+            );
+        }
+        all_divs.extend(
+            steps
+                .iter()
+                .filter_map(|s| s.divisor.clone().map(|d| (d, Need::NonZero))),
+        );
+        for (d, need) in &all_divs {
+            let reduced = reduce(d).unwrap_or_else(|_| d.clone());
+            let text = match need {
+                Need::NonZero => {
+                    if reduced.is_zero() || zero_by_facts(&reduced, &all_scope, &signs) {
+                        return Err(Diagnostic::error(
+                            "E0305",
+                            format!(
+                                "this step divides by {}, which is zero by the facts",
+                                plain(d)
+                            ),
+                            span,
+                            "division by zero",
+                        ));
+                    }
+                    let Some(essential) = essential_factor(&reduced, &signs) else {
+                        continue;
+                    };
+                    format!("{} != 0", plain(&essential))
+                }
+                Need::Positive | Need::NonNegative => {
+                    let s = sign_of(&reduced, &signs);
+                    let (ok, bad, op) = if *need == Need::Positive {
+                        (s == Sign::Pos, s.is_nonpos(), ">")
+                    } else {
+                        (s.is_nonneg(), s == Sign::Neg, ">=")
+                    };
+                    if ok {
+                        continue;
+                    }
+                    if bad {
+                        return Err(Diagnostic::error(
+                            "E0305",
+                            format!("this step takes ln or a square root of {}, which is not {op} 0 here", plain(d)),
+                            span,
+                            "outside the domain",
+                        ));
+                    }
+                    format!("{} {op} 0", plain(&reduced))
+                }
             };
-            let text = format!("{} != 0", plain(&essential));
             if !conditions.contains(&text) {
                 conditions.push(text);
             }
@@ -648,25 +951,61 @@ impl<'l, 'o> Checker<'l, 'o> {
         match link.op {
             RelOp::Eq => {
                 if reduced_diff.is_zero() {
-                    return Ok(Status::Verified { how: how_eq(&via), side_conditions: conditions });
+                    return Ok(Status::Verified {
+                        how: how_eq(&via),
+                        side_conditions: conditions,
+                    });
                 }
-                Err(self.not_equal(&a, &b, &ra, &rb, elim.as_ref(), &via, span, timed_out))
+                Err(self.not_equal(
+                    &a,
+                    &b,
+                    &ra,
+                    &rb,
+                    elim.as_ref(),
+                    &via,
+                    span,
+                    timed_out,
+                    &all_divs,
+                ))
             }
-            RelOp::Ne => match decide(&ra, &rb, &signs) {
-                Verdict::NotEqual { .. } => Ok(Status::Verified {
-                    how: Justification::Signs(via),
-                    side_conditions: conditions,
-                }),
-                Verdict::Equal => Err(Diagnostic::error("E0303", "the two sides are equal, so `!=` is false", span, "")),
-                Verdict::Undecided { why } => {
-                    let mut d = Diagnostic::error("E0302", "not verified: rigor cannot show the sides differ", span, "");
-                    d.notes.push(why);
-                    d.severity = Severity::Error;
-                    Err(d)
+            RelOp::Ne => {
+                // Like every inequality: verified when the signs show `lhs − rhs` nonzero.
+                if reduced_diff.is_zero() {
+                    return Err(Diagnostic::error(
+                        "E0303",
+                        "the two sides are equal, so `!=` is false",
+                        span,
+                        "",
+                    ));
                 }
-            },
+                let d = ra
+                    .sub(&rb)
+                    .map_err(|e| Diagnostic::error("E0101", e.to_string(), span, ""))?;
+                if sign_of(&d, &signs).is_nonzero() {
+                    return Ok(Status::Verified {
+                        how: Justification::Signs(via),
+                        side_conditions: conditions,
+                    });
+                }
+                let mut diag = Diagnostic::error(
+                    "E0303",
+                    "not verified: the declared signs do not show that the sides differ",
+                    span,
+                    "",
+                )
+                .note(format!(
+                    "left − right = {}, which may be zero for some allowed values",
+                    plain(&d)
+                ));
+                if let Verdict::NotEqual { .. } = decide(&ra, &rb, &signs) {
+                    diag.notes.push("the sides are not identical, but `!=` claims they differ for every allowed value".into());
+                }
+                Err(diag)
+            }
             RelOp::Lt | RelOp::Le | RelOp::Gt | RelOp::Ge => {
-                let d = ra.sub(&rb).map_err(|e| Diagnostic::error("E0101", e.to_string(), span, ""))?;
+                let d = ra
+                    .sub(&rb)
+                    .map_err(|e| Diagnostic::error("E0101", e.to_string(), span, ""))?;
                 let sign = sign_of(&d, &signs);
                 let ok = match link.op {
                     RelOp::Lt => sign == Sign::Neg,
@@ -675,22 +1014,32 @@ impl<'l, 'o> Checker<'l, 'o> {
                     _ => sign.is_nonneg(),
                 };
                 if ok {
-                    return Ok(Status::Verified { how: Justification::Signs(via), side_conditions: conditions });
+                    return Ok(Status::Verified {
+                        how: Justification::Signs(via),
+                        side_conditions: conditions,
+                    });
                 }
                 let mut diag = Diagnostic::error(
                     "E0303",
-                    format!("not verified: `{}` does not follow from the declared signs", link.op),
+                    format!(
+                        "not verified: `{}` does not follow from the declared signs",
+                        link.op
+                    ),
                     span,
                     "",
                 )
                 .note(format!("left − right = {}", plain(&d)));
                 if let Some(e) = &elim {
                     if !e.stuck.is_empty() {
-                        diag.notes.push(format!("the facts do not determine {}", names(&e.stuck)));
+                        diag.notes
+                            .push(format!("the facts do not determine {}", names(&e.stuck)));
                     }
                 }
                 if let Some(c) = violation(&ra, &rb, link.op, &signs) {
-                    diag.message = format!("`{}` is false for some values allowed by the declared signs", link.op);
+                    diag.message = format!(
+                        "`{}` is false for some values allowed by the declared signs",
+                        link.op
+                    );
                     diag.notes.push(c);
                     Err(diag)
                 } else {
@@ -713,17 +1062,34 @@ impl<'l, 'o> Checker<'l, 'o> {
         via: &[String],
         span: Span,
         timed_out: bool,
+        defined: &[(Rat, Need)],
     ) -> Diagnostic {
-        let using = if via.is_empty() { String::new() } else { format!(" (after using {})", via.join(", ")) };
+        let using = if via.is_empty() {
+            String::new()
+        } else {
+            format!(" (after using {})", cite(via))
+        };
         let mut notes = vec![
             format!("left side:  {}", plain(a)),
             format!("right side: {}", plain(b)),
         ];
         if !via.is_empty() {
-            notes.push(format!("with the facts{using}: left {} , right {}", plain(ra), plain(rb)).replace(" ,", ","));
+            notes.push(
+                format!(
+                    "with the facts{using}: left {} , right {}",
+                    plain(ra),
+                    plain(rb)
+                )
+                .replace(" ,", ","),
+            );
         }
         if timed_out {
-            let mut d = Diagnostic::error("E0902", "not verified: the claim ran out of its time budget (see --timeout)", span, "undecided");
+            let mut d = Diagnostic::error(
+                "E0902",
+                "not verified: the claim ran out of its time budget (see --timeout)",
+                span,
+                "undecided",
+            );
             d.notes = notes;
             return d;
         }
@@ -731,32 +1097,65 @@ impl<'l, 'o> Checker<'l, 'o> {
             if !e.stuck.is_empty() {
                 let mut d = Diagnostic::error(
                     "E0302",
-                    format!("not verified: nothing in scope determines {}", names(&e.stuck)),
+                    format!(
+                        "not verified: nothing in scope determines {}",
+                        names(&e.stuck)
+                    ),
                     span,
                     "a fact may be missing",
                 );
-                notes.push(format!("after eliminating what the facts give, left − right = {}", plain(&e.target)));
-                notes.push(format!("a fact about {} was needed but never given (or `by [..]` left it out)", names(&e.stuck)));
+                notes.push(format!(
+                    "after eliminating what the facts give, left − right = {}",
+                    plain(&e.target)
+                ));
+                notes.push(format!(
+                    "a fact about {} was needed but never given (or `by [..]` left it out)",
+                    names(&e.stuck)
+                ));
                 d.notes = notes;
                 return d;
             }
         }
-        match decide(ra, rb, &self.env.signs) {
-            Verdict::NotEqual { diagnosis, counterexample, .. } => {
-                let label = diagnosis.clone().unwrap_or_else(|| "the two sides differ".into());
-                let mut d = Diagnostic::error("E0301", format!("this step does not hold{using}"), span, &label);
+        match crate::decide::decide_where(ra, rb, &self.env.signs, defined) {
+            Verdict::NotEqual {
+                diagnosis,
+                counterexample,
+                ..
+            } => {
+                let label = diagnosis
+                    .clone()
+                    .unwrap_or_else(|| "the two sides differ".into());
+                let mut d = Diagnostic::error(
+                    "E0301",
+                    format!("this step does not hold{using}"),
+                    span,
+                    &label,
+                );
                 if let Some(c) = counterexample {
                     if c.values.is_empty() {
-                        notes.push(format!("the left side is {}, the right side {}", c.lhs, c.rhs));
+                        notes.push(format!(
+                            "the left side is {}, the right side {}",
+                            c.lhs, c.rhs
+                        ));
                     } else {
-                        notes.push(format!("counterexample: at {} the left side is {} and the right side {}", c.assignment(), c.lhs, c.rhs));
+                        notes.push(format!(
+                            "counterexample: at {} the left side is {} and the right side {}",
+                            c.assignment(),
+                            c.lhs,
+                            c.rhs
+                        ));
                     }
                 }
                 d.notes = notes;
                 d
             }
             Verdict::Undecided { why } => {
-                let mut d = Diagnostic::error("E0302", format!("not verified{using}: rigor can neither prove nor refute this step"), span, "undecided");
+                let mut d = Diagnostic::error(
+                    "E0302",
+                    format!("not verified{using}: rigor can neither prove nor refute this step"),
+                    span,
+                    "undecided",
+                );
                 notes.push(why);
                 d.notes = notes;
                 d
@@ -769,7 +1168,14 @@ impl<'l, 'o> Checker<'l, 'o> {
         }
     }
 
-    fn approx(&self, a: &Rat, b: &Rat, rhs: &Expr, span: Span, conditions: Vec<String>) -> Result<Status, Diagnostic> {
+    fn approx(
+        &self,
+        a: &Rat,
+        b: &Rat,
+        rhs: &Expr,
+        span: Span,
+        conditions: Vec<String>,
+    ) -> Result<Status, Diagnostic> {
         let Some((c, ulp)) = literal_precision(rhs, &self.report.source) else {
             return Err(Diagnostic::error(
                 "E0304",
@@ -779,7 +1185,12 @@ impl<'l, 'o> Checker<'l, 'o> {
             ));
         };
         let Ok(ratio) = a.div(b) else {
-            return Err(Diagnostic::error("E0304", "the right side of `~=` is zero", span, ""));
+            return Err(Diagnostic::error(
+                "E0304",
+                "the right side of `~=` is zero",
+                span,
+                "",
+            ));
         };
         // A/B must be a number; then A ≈ B when |c·A/B − c| ≤ ulp/2.
         let mut sy = Vec::new();
@@ -787,7 +1198,10 @@ impl<'l, 'o> Checker<'l, 'o> {
         if !sy.is_empty() {
             return Err(Diagnostic::error(
                 "E0304",
-                format!("`~=` is not verified: the ratio of the sides, {}, is not a number", plain(&ratio)),
+                format!(
+                    "`~=` is not verified: the ratio of the sides, {}, is not a number",
+                    plain(&ratio)
+                ),
                 span,
                 "",
             ));
@@ -824,6 +1238,33 @@ impl<'l, 'o> Checker<'l, 'o> {
                 "undecided",
             )),
         }
+    }
+}
+
+/// Whether `value` satisfies the sign declared for `name`; the message says why not.
+pub(crate) fn respects_sign(
+    name: &str,
+    declared: Sign,
+    value: &Rat,
+    signs: &crate::normal::Assumptions,
+) -> Result<(), String> {
+    let s = sign_of(value, signs);
+    let (ok, what) = match declared {
+        Sign::Pos => (s == Sign::Pos, "> 0"),
+        Sign::NonNeg => (s.is_nonneg(), ">= 0"),
+        Sign::NonZero => (s.is_nonzero(), "!= 0"),
+        Sign::Neg => (s == Sign::Neg, "< 0"),
+        Sign::NonPos => (s.is_nonpos(), "<= 0"),
+        Sign::Zero => (value.is_zero(), "= 0"),
+        Sign::Unknown => (true, ""),
+    };
+    if ok {
+        Ok(())
+    } else {
+        Err(format!(
+            "`{name}` is declared {what}, but {} is not shown to be {what}; results that used the sign of `{name}` would not carry over",
+            plain(value)
+        ))
     }
 }
 
@@ -866,8 +1307,26 @@ fn show(q: &Q) -> String {
     }
 }
 
+/// `[Fx], [MG], line 12`.
+fn cite(facts: &[String]) -> String {
+    facts
+        .iter()
+        .map(|f| {
+            if f.starts_with("line ") {
+                f.clone()
+            } else {
+                format!("[{f}]")
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 fn names(ids: &[AtomId]) -> String {
-    ids.iter().map(|a| unknown_name(*a)).collect::<Vec<_>>().join(", ")
+    ids.iter()
+        .map(|a| unknown_name(*a))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 fn describe(s: Sign) -> &'static str {
@@ -921,7 +1380,7 @@ fn sign_of(d: &Rat, signs: &crate::normal::Assumptions) -> Sign {
     };
     match (n, den) {
         (_, Sign::Unknown | Sign::NonZero) | (Sign::Unknown, _) => s,
-        (n, den) => n.mul(den),
+        (n, den) => n.times(den),
     }
 }
 
@@ -961,9 +1420,9 @@ fn grouped_sign(p: &crate::normal::Poly, signs: &crate::normal::Assumptions) -> 
         };
         let mut s = cs;
         for &(a, e) in sym.pairs() {
-            s = s.mul(signs.atom(a).pow(e));
+            s = s.times(signs.atom(a).pow(e));
         }
-        total = total.add(s);
+        total = total.plus(s);
     }
     total
 }
@@ -975,7 +1434,11 @@ fn violation(a: &Rat, b: &Rat, op: RelOp, signs: &crate::normal::Assumptions) ->
     crate::decide::symbols_in(b, &mut sy);
     // Reuse the counterexample search on `a` against `b`, then test the relation there.
     let c = find_counterexample(a, b, signs)?;
-    let point: HashMap<AtomId, Q> = c.values.iter().map(|(n, q)| (atom::sym(n), q.clone())).collect();
+    let point: HashMap<AtomId, Q> = c
+        .values
+        .iter()
+        .map(|(n, q)| (atom::sym(n), q.clone()))
+        .collect();
     let mut ev = crate::decide::Evaluator::new(&point);
     let d = ev.rat(&a.sub(b).ok()?)?;
     let false_there = match op {
@@ -984,7 +1447,14 @@ fn violation(a: &Rat, b: &Rat, op: RelOp, signs: &crate::normal::Assumptions) ->
         RelOp::Gt => d.is_negative() || d.hi() <= &Q::from_integer(0.into()),
         _ => d.is_negative(),
     };
-    false_there.then(|| format!("at {} the left side is {} and the right side {}", c.assignment(), c.lhs, c.rhs))
+    false_there.then(|| {
+        format!(
+            "at {} the left side is {} and the right side {}",
+            c.assignment(),
+            c.lhs,
+            c.rhs
+        )
+    })
 }
 
 /// The first decimal literal in `e` and the unit of its last written digit.

@@ -37,6 +37,12 @@ impl Default for Options {
 pub struct Exports {
     /// Label → the equations `lhs − rhs = 0` of that claim.
     pub claims: HashMap<String, Vec<Rat>>,
+    /// The signs the file declares for its symbols (its claims hold under them).
+    pub signs: HashMap<String, crate::normal::Sign>,
+    /// The file's unknowns (and `time` symbols): they cannot be instantiated.
+    pub unknowns: Vec<String>,
+    /// The first input error of the file, if it has one.
+    pub error: Option<String>,
 }
 
 /// Resolves `use` imports for one top-level file.
@@ -67,29 +73,39 @@ impl Loader<'_> {
             )));
         }
         let joined = from_dir.join(rel);
-        let canon = joined.canonicalize().map_err(|e| {
-            ImportError::Msg(format!("cannot read \"{}\": {e}", joined.display()))
-        })?;
-        let root = self.root.canonicalize().unwrap_or_else(|_| self.root.clone());
+        let canon = joined
+            .canonicalize()
+            .map_err(|e| ImportError::Msg(format!("cannot read \"{path}\": {e}")))?;
+        let root = self
+            .root
+            .canonicalize()
+            .unwrap_or_else(|_| self.root.clone());
         if !canon.starts_with(&root) {
             return Err(ImportError::Msg(format!(
-                "\"{path}\" is outside the folder being checked ({}); imports must stay inside it",
-                self.root.display()
+                "\"{path}\" is outside the folder being checked; imports must stay inside it"
             )));
         }
         if let Some(i) = self.stack.iter().position(|p| *p == canon) {
             let chain: Vec<String> = self.stack[i..]
                 .iter()
                 .chain(std::iter::once(&canon))
-                .map(|p| p.file_name().map_or_else(|| p.display().to_string(), |f| f.to_string_lossy().into_owned()))
+                .map(|p| {
+                    p.file_name().map_or_else(
+                        || p.display().to_string(),
+                        |f| f.to_string_lossy().into_owned(),
+                    )
+                })
                 .collect();
-            return Err(ImportError::Msg(format!("import cycle: {}", chain.join(" → "))));
+            return Err(ImportError::Msg(format!(
+                "import cycle: {}",
+                chain.join(" → ")
+            )));
         }
         if let Some(e) = self.cache.get(&canon) {
             return Ok(e.clone());
         }
         let src = read(&canon, self.opts.max_file_size)
-            .map_err(|e| ImportError::Msg(format!("cannot read \"{}\": {e}", joined.display())))?;
+            .map_err(|e| ImportError::Msg(format!("cannot read \"{path}\": {e}")))?;
         self.stack.push(canon.clone());
         let dir = canon.parent().map(Path::to_path_buf).unwrap_or_default();
         let (report, exports) = check_inner(&joined.display().to_string(), &src, &dir, self);
@@ -117,7 +133,12 @@ fn read(path: &Path, max: u64) -> Result<String, String> {
     })
 }
 
-fn check_inner(path: &str, src: &str, dir: &Path, loader: &mut Loader<'_>) -> (FileReport, Exports) {
+fn check_inner(
+    path: &str,
+    src: &str,
+    dir: &Path,
+    loader: &mut Loader<'_>,
+) -> (FileReport, Exports) {
     let mut report = FileReport {
         path: path.to_string(),
         source: src.to_string(),
@@ -143,7 +164,11 @@ fn check_inner(path: &str, src: &str, dir: &Path, loader: &mut Loader<'_>) -> (F
 /// Checks one source text as if read from `path` (imports resolve next to `path`).
 pub fn check_source(path: &Path, src: &str, opts: &Options) -> FileReport {
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    let root = if dir.as_os_str().is_empty() { PathBuf::from(".") } else { dir.clone() };
+    let root = if dir.as_os_str().is_empty() {
+        PathBuf::from(".")
+    } else {
+        dir.clone()
+    };
     let mut loader = Loader {
         root,
         stack: path.canonicalize().ok().into_iter().collect(),
@@ -208,7 +233,9 @@ pub fn check_paths(paths: &[PathBuf], opts: &Options) -> Vec<FileReport> {
     }
     let results: Mutex<Vec<Option<FileReport>>> = Mutex::new(vec![None; jobs.len()]);
     let next = Mutex::new(0usize);
-    let workers = std::thread::available_parallelism().map_or(2, |n| n.get()).min(jobs.len().max(1));
+    let workers = std::thread::available_parallelism()
+        .map_or(2, |n| n.get())
+        .min(jobs.len().max(1));
     std::thread::scope(|s| {
         for _ in 0..workers {
             s.spawn(|| loop {

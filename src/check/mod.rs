@@ -2,11 +2,11 @@
 //! checks every link of every claim (FORMAT.md §3). It never fails: every outcome,
 //! errors included, is recorded in a [`FileReport`].
 
+mod link;
+mod load;
 pub mod report;
 pub mod scope;
 pub mod solve;
-mod link;
-mod load;
 
 pub use load::{check_paths, check_source, Options};
 pub use report::{ClaimReport, FileReport, Justification, LinkReport, Status};

@@ -120,7 +120,7 @@ impl FileReport {
 
     /// Whether every link verified and there was no error.
     pub fn ok(&self) -> bool {
-        !self.input_error && self.failed() == 0
+        !self.input_error && self.claims.iter().all(ClaimReport::verified)
     }
 
     /// The status of the link whose span is `span`, if checked.

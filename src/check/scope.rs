@@ -55,7 +55,11 @@ impl Scope {
             let d = distance(&name.to_lowercase(), &cand.to_lowercase())
                 + usize::from(name.to_lowercase() != cand.to_lowercase() || name != cand);
             let limit = 1 + name.len() / 3;
-            if d <= limit + 1 && best.as_ref().is_none_or(|b| d < b.0 || d == b.0 && *cand < b.1) {
+            if d <= limit + 1
+                && best
+                    .as_ref()
+                    .is_none_or(|b| d < b.0 || d == b.0 && *cand < b.1)
+            {
                 best = Some((d, cand.clone()));
             }
         }

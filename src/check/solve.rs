@@ -42,6 +42,8 @@ pub struct Elimination {
     pub stuck: Vec<AtomId>,
     /// Whether the time budget ran out.
     pub timed_out: bool,
+    /// The fact the target is a constant multiple of, when that settled it.
+    pub multiple_of: Option<String>,
 }
 
 /// Eliminates the unknowns in `target` using `facts`; then, if the target is still not
@@ -54,7 +56,22 @@ pub fn eliminate(
     signs: &Assumptions,
     deadline: Option<Instant>,
 ) -> Result<Elimination, NormError> {
-    let first = eliminate_with(target, facts, is_unknown, signs, deadline)?;
+    // A constant multiple of one fact needs no elimination (and no side condition).
+    for f in facts {
+        if let Ok(r) = target.div(&f.value) {
+            if r.as_constant().is_some() {
+                return Ok(Elimination {
+                    target: Rat::zero(),
+                    steps: Vec::new(),
+                    contradiction: None,
+                    stuck: Vec::new(),
+                    timed_out: false,
+                    multiple_of: Some(f.name.clone()),
+                });
+            }
+        }
+    }
+    let first = eliminate_with(target, facts, is_unknown, signs, deadline, false)?;
     if first.target.is_zero() || first.contradiction.is_some() || first.timed_out {
         return Ok(first);
     }
@@ -69,11 +86,14 @@ pub fn eliminate(
             Err(_) => continue,
         };
         if !v.is_zero() && !v.atoms().iter().any(|a| is_unknown(*a)) {
-            rest.push(Fact { value: v, name: f.name.clone() });
+            rest.push(Fact {
+                value: v,
+                name: f.name.clone(),
+            });
         }
     }
     let any_symbol = |a: AtomId| atom::sym_name(a).is_some();
-    let second = eliminate_with(&first.target, &rest, &any_symbol, signs, deadline)?;
+    let second = eliminate_with(&first.target, &rest, &any_symbol, signs, deadline, false)?;
     if !second.target.is_zero() {
         return Ok(first);
     }
@@ -88,7 +108,9 @@ fn eliminate_with(
     is_unknown: &dyn Fn(AtomId) -> bool,
     signs: &Assumptions,
     deadline: Option<Instant>,
+    strict: bool,
 ) -> Result<Elimination, NormError> {
+    let mut conditional = false;
     let mut target = target.clone();
     let mut facts: Vec<Fact> = facts.to_vec();
     let mut steps = Vec::new();
@@ -99,26 +121,40 @@ fn eliminate_with(
             timed_out = true;
             break;
         }
-        let unknowns: Vec<AtomId> = target.atoms().into_iter().filter(|a| is_unknown(*a)).collect();
+        // Content order, not id order: the same file is checked the same way in every run.
+        let mut unknowns: Vec<AtomId> = target
+            .atoms()
+            .into_iter()
+            .filter(|a| is_unknown(*a))
+            .collect();
+        unknowns.sort_by(|a, b| atom::cmp_atoms(*a, *b));
         if unknowns.is_empty() {
             break;
         }
-        // The best (fact, unknown) pair: the fact with fewest unknowns that determines one.
-        let mut best: Option<(usize, usize, AtomId, Solution)> = None;
+        // The best (fact, unknown) pair: no division by a quantity of unknown sign if
+        // possible, then the fact with fewest unknowns.
+        let mut best: Option<((bool, usize), usize, AtomId, Solution)> = None;
         for u in &unknowns {
             for (i, f) in facts.iter().enumerate() {
                 let n_unknowns = f.value.atoms().iter().filter(|a| is_unknown(**a)).count();
-                if best.as_ref().is_some_and(|b| b.0 <= n_unknowns) {
+                if best.as_ref().is_some_and(|b| b.0 <= (false, n_unknowns)) {
                     continue;
                 }
                 if let Some(sol) = solve_for(&f.value, *u, signs)? {
-                    best = Some((n_unknowns, i, *u, sol));
+                    let rank = (sol.divisor.is_some(), n_unknowns);
+                    if strict && rank.0 {
+                        continue;
+                    }
+                    if best.as_ref().is_none_or(|b| rank < b.0) {
+                        best = Some((rank, i, *u, sol));
+                    }
                 }
             }
         }
         let Some((_, i, u, sol)) = best else {
             break;
         };
+        conditional |= sol.divisor.is_some();
         let fact = facts.remove(i);
         target = subst_atom(&target, u, &sol.value, signs)?;
         let mut kept = Vec::with_capacity(facts.len());
@@ -132,7 +168,11 @@ fn eliminate_with(
             if v.is_zero() {
                 continue;
             }
-            if contradiction.is_none() && !v.atoms().iter().any(|a| is_unknown(*a)) && signs.rat(&v).is_nonzero() {
+            if contradiction.is_none()
+                && !conditional
+                && !v.atoms().iter().any(|a| is_unknown(*a))
+                && signs.rat(&v).is_nonzero()
+            {
                 contradiction = Some(f.name.clone());
             }
             kept.push(Fact {
@@ -148,13 +188,19 @@ fn eliminate_with(
             divisor: sol.divisor,
         });
     }
-    let stuck = target.atoms().into_iter().filter(|a| is_unknown(*a)).collect();
+    let mut stuck: Vec<AtomId> = target
+        .atoms()
+        .into_iter()
+        .filter(|a| is_unknown(*a))
+        .collect();
+    stuck.sort_by(|a, b| atom::cmp_atoms(*a, *b));
     Ok(Elimination {
         target,
         steps,
         contradiction,
         stuck,
         timed_out,
+        multiple_of: None,
     })
 }
 
@@ -186,7 +232,8 @@ fn solve_for(f: &Rat, u: AtomId, signs: &Assumptions) -> Result<Option<Solution>
     }
     let lead = Rat::poly(lead)?;
     let rest = Rat::poly(rest)?;
-    let divisor = (!signs.rat(&lead).is_nonzero() && lead.as_constant().is_none()).then(|| lead.clone());
+    let divisor =
+        (!signs.rat(&lead).is_nonzero() && lead.as_constant().is_none()).then(|| lead.clone());
     let base = rest.neg().div(&lead)?;
     let value = if deg == 1 {
         base
@@ -198,6 +245,57 @@ fn solve_for(f: &Rat, u: AtomId, signs: &Assumptions) -> Result<Option<Solution>
         }
     };
     Ok(Some(Solution { value, divisor }))
+}
+
+/// Whether `d` is zero by the facts, shown by eliminating atoms only with coefficients
+/// that are provably nonzero (so the conclusion holds without side conditions).
+pub fn zero_by_facts(d: &Rat, facts: &[Fact], signs: &Assumptions) -> bool {
+    if d.is_zero() {
+        return true;
+    }
+    let any_atom = |a: AtomId| !matches!(&*atom::get(a), crate::normal::Atom::Pi);
+    eliminate_with(d, facts, &any_atom, signs, None, true).is_ok_and(|e| e.target.is_zero())
+}
+
+/// A fact that the others make false (a nonzero quantity equal to zero), found by
+/// eliminating atoms with provably nonzero coefficients only.
+pub fn contradiction(facts: &[Fact], signs: &Assumptions) -> Option<String> {
+    let mut fs: Vec<Fact> = facts.to_vec();
+    for _ in 0..=facts.len() {
+        if let Some(f) = fs.iter().find(|f| signs.rat(&f.value).is_nonzero()) {
+            return Some(f.name.clone());
+        }
+        let mut pick = None;
+        'outer: for (i, f) in fs.iter().enumerate() {
+            let mut atoms = f.value.num().atoms();
+            atoms.sort_by(|a, b| atom::cmp_atoms(*a, *b));
+            for u in atoms {
+                if matches!(&*atom::get(u), crate::normal::Atom::Pi) {
+                    continue;
+                }
+                if let Ok(Some(sol)) = solve_for(&f.value, u, signs) {
+                    if sol.divisor.is_none() {
+                        pick = Some((i, u, sol.value));
+                        break 'outer;
+                    }
+                }
+            }
+        }
+        let (i, u, value) = pick?;
+        fs.remove(i);
+        let mut next = Vec::with_capacity(fs.len());
+        for f in fs {
+            match subst_atom(&f.value, u, &value, signs) {
+                Ok(v) if !v.is_zero() => next.push(Fact {
+                    value: v,
+                    name: f.name,
+                }),
+                _ => {}
+            }
+        }
+        fs = next;
+    }
+    None
 }
 
 /// Applies solved steps, in order, to another expression (e.g. a divisor).
@@ -213,4 +311,3 @@ pub fn apply_steps(r: &Rat, steps: &[Step], signs: &Assumptions) -> Result<Rat, 
 pub fn unknown_name(a: AtomId) -> String {
     atom::sym_name(a).unwrap_or_else(|| "?".into())
 }
-

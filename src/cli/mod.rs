@@ -27,7 +27,7 @@ macro_rules! errln {
 }
 
 use crate::Format;
-use rigor::decide::{decide, Verdict};
+use rigor::decide::Verdict;
 use rigor::diag::{self, Diagnostic};
 use rigor::lower::{build_body, Env, LowerError, Lowerer};
 use rigor::normal::print;
@@ -36,7 +36,12 @@ use rigor::syntax::{parse_expr, parse_file, ParseOptions, SyntaxError};
 use std::path::Path;
 
 fn report_syntax(e: &SyntaxError, what: &str, src: &str) {
-    let d = Diagnostic::error("E0001", format!("syntax error: {}", e.message), e.span, "here");
+    let d = Diagnostic::error(
+        "E0001",
+        format!("syntax error: {}", e.message),
+        e.span,
+        "here",
+    );
     err!("{}", diag::render(&d, what, src));
 }
 
@@ -100,16 +105,48 @@ fn options_env(assume: &[String], bodies: &[String], opts: &ParseOptions) -> Res
     Ok(env)
 }
 
+/// Set when lowering an argument ran out of time: `equiv` is then undecided (3), not bad input.
+static TIMED_OUT: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+fn bad_input_or_undecided() -> u8 {
+    if TIMED_OUT.load(std::sync::atomic::Ordering::Relaxed) {
+        outln!("undecided");
+        outln!("  the time budget ran out (see --timeout)");
+        3
+    } else {
+        2
+    }
+}
+
+type Conditions = Vec<(rigor::normal::Rat, rigor::lower::Need)>;
+
 fn lower_arg(
     text: &str,
     what: &str,
     env: &Env,
     opts: &ParseOptions,
-) -> Result<rigor::normal::Rat, ()> {
+) -> Result<(rigor::normal::Rat, Conditions), ()> {
     let e = parse_expr(text, opts).map_err(|e| report_syntax(&e, what, text))?;
-    Lowerer::new(env)
-        .lower(&e)
-        .map_err(|e| report_lower(&e, what, text))
+    let mut lw = Lowerer::new(env);
+    let r = lw.lower(&e).map_err(|e| {
+        report_lower(&e, what, text);
+        if e.timeout {
+            TIMED_OUT.store(true, std::sync::atomic::Ordering::Relaxed);
+        }
+    })?;
+    Ok((
+        r,
+        lw.divisors.into_iter().map(|d| (d.value, d.need)).collect(),
+    ))
+}
+
+fn condition_text(c: &(rigor::normal::Rat, rigor::lower::Need)) -> String {
+    let op = match c.1 {
+        rigor::lower::Need::NonZero => "!=",
+        rigor::lower::Need::Positive => ">",
+        rigor::lower::Need::NonNegative => ">=",
+    };
+    format!("{} {op} 0", print::plain(&c.0))
 }
 
 /// `rigor simplify`.
@@ -123,7 +160,7 @@ pub fn simplify(
     let Ok(env) = options_env(assume, bodies, opts) else {
         return 2;
     };
-    let Ok(r) = lower_arg(expr, "<EXPR>", &env, opts) else {
+    let Ok((r, _)) = lower_arg(expr, "<EXPR>", &env, opts) else {
         return 2;
     };
     if latex {
@@ -139,15 +176,21 @@ pub fn equiv(a: &str, b: &str, assume: &[String], bodies: &[String], opts: &Pars
     let Ok(env) = options_env(assume, bodies, opts) else {
         return 2;
     };
-    let Ok(ra) = lower_arg(a, "<A>", &env, opts) else {
-        return 2;
+    let Ok((ra, mut conds)) = lower_arg(a, "<A>", &env, opts) else {
+        return bad_input_or_undecided();
     };
-    let Ok(rb) = lower_arg(b, "<B>", &env, opts) else {
-        return 2;
+    let Ok((rb, cb)) = lower_arg(b, "<B>", &env, opts) else {
+        return bad_input_or_undecided();
     };
-    match decide(&ra, &rb, &env.signs) {
+    conds.extend(cb);
+    match rigor::decide::decide_where(&ra, &rb, &env.signs, &conds) {
         Verdict::Equal => {
             outln!("equal");
+            let mut texts: Vec<String> = conds.iter().map(condition_text).collect();
+            texts.dedup();
+            if !texts.is_empty() {
+                outln!("  where both sides are defined: {}", texts.join(", "));
+            }
             0
         }
         Verdict::NotEqual {
@@ -195,16 +238,15 @@ pub fn check(
     paths: &[std::path::PathBuf],
     format: Format,
     verbose: bool,
-    timeout: f64,
+    timeout: std::time::Duration,
     max_file_size: u64,
     opts: &ParseOptions,
 ) -> u8 {
     let default = [std::path::PathBuf::from("derivations")];
-    let paths = if paths.is_empty() { &default[..] } else { paths };
-    let timeout = if timeout.is_finite() && timeout > 0.0 {
-        std::time::Duration::from_secs_f64(timeout.min(1e6))
+    let paths = if paths.is_empty() {
+        &default[..]
     } else {
-        std::time::Duration::from_secs(10)
+        paths
     };
     let options = rigor::check::Options {
         parse: *opts,
@@ -275,7 +317,10 @@ pub fn document(file: &Path, out: Option<&Path>, latex: bool, opts: &ParseOption
         Some(path) => write_atomically(path, &text),
     };
     if let Err(e) = written {
-        errln!("error: cannot write {}: {e}", out.map_or_else(String::new, |p| p.display().to_string()));
+        errln!(
+            "error: cannot write {}: {e}",
+            out.map_or_else(String::new, |p| p.display().to_string())
+        );
         return 2;
     }
     if !report.ok() {
@@ -293,8 +338,13 @@ pub fn document(file: &Path, out: Option<&Path>, latex: bool, opts: &ParseOption
 /// Writes to a temporary file beside `path`, then renames it over `path`, so a crash
 /// never leaves a half-written document.
 fn write_atomically(path: &Path, text: &str) -> std::io::Result<()> {
-    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let name = path.file_name().map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
     let tmp = dir.join(format!(".{name}.rigor-tmp-{}", std::process::id()));
     std::fs::write(&tmp, text)?;
     std::fs::rename(&tmp, path).inspect_err(|_| {

@@ -176,18 +176,17 @@ pub fn cmp_atoms(a: AtomId, b: AtomId) -> Ordering {
         return Ordering::Equal;
     }
     let (x, y) = (get(a), get(b));
-    kind_rank(&x).cmp(&kind_rank(&y)).then_with(|| match (&*x, &*y) {
-        (Atom::Sym(p), Atom::Sym(q)) => p
-            .to_lowercase()
-            .cmp(&q.to_lowercase())
-            .then_with(|| p.cmp(q)),
-        (Atom::Moment(b1, e1), Atom::Moment(b2, e2)) => b1.cmp(b2).then_with(|| e1.cmp(e2)),
-        _ => {
-            let (p, q) = (
-                super::print::atom_plain(&x),
-                super::print::atom_plain(&y),
-            );
-            p.len().cmp(&q.len()).then_with(|| p.cmp(&q))
-        }
-    })
+    kind_rank(&x)
+        .cmp(&kind_rank(&y))
+        .then_with(|| match (&*x, &*y) {
+            (Atom::Sym(p), Atom::Sym(q)) => p
+                .to_lowercase()
+                .cmp(&q.to_lowercase())
+                .then_with(|| p.cmp(q)),
+            (Atom::Moment(b1, e1), Atom::Moment(b2, e2)) => b1.cmp(b2).then_with(|| e1.cmp(e2)),
+            _ => {
+                let (p, q) = (super::print::atom_plain(&x), super::print::atom_plain(&y));
+                p.len().cmp(&q.len()).then_with(|| p.cmp(&q))
+            }
+        })
 }

@@ -8,6 +8,7 @@ use super::rat::Rat;
 use super::sign::{Assumptions, Sign};
 use super::{Limit, NormError};
 use num_bigint::{BigInt, BigUint};
+use num_integer::Integer;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
 /// Primes by trial division up to this bound; a larger cofactor is kept whole.
@@ -89,7 +90,9 @@ fn root_poly(p: &Poly, n: u32, s: &Assumptions) -> Result<Rat, NormError> {
     // Constant factor: c = a/b, root(c) = root(a·b^(n−1))/b.
     let c = p.content();
     let neg = p.lead().is_some_and(|t| t.1.is_negative());
-    let rest = p.scale(&c.recip()).scale(&if neg { -Q::one() } else { Q::one() });
+    let rest = p
+        .scale(&c.recip())
+        .scale(&if neg { -Q::one() } else { Q::one() });
     let (a, b) = (c.numer().magnitude().clone(), c.denom().magnitude().clone());
     let radicand = &a * num_traits::pow(b.clone(), (n - 1) as usize);
     let (k, factors) = split_power(&radicand, n);
@@ -325,7 +328,7 @@ pub fn ln(u: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
     }
     if !(leftover_num.is_one() && leftover_den.is_one()) {
         let v = Rat::new(leftover_num, leftover_den)?;
-        let l = match v.as_atom().map(|a| atom::get(a)) {
+        let l = match v.as_atom().map(atom::get) {
             Some(a) => match &*a {
                 Atom::Exp(w) => w.clone(),
                 _ => Rat::atom(atom::intern(Atom::Ln(v))),
@@ -364,6 +367,24 @@ fn ln_rational(q: &Q) -> Result<Rat, NormError> {
 /// symbolic exponents as `exp(e·ln(b))` when `b > 0`, else an opaque power.
 pub fn pow(base: &Rat, exponent: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
     if let Some(e) = exponent.as_constant() {
+        // 0, 1 and −1 to any power are exact whatever its size.
+        if let Some(b) = base.as_constant() {
+            if e.is_integer() && (b.is_zero() || b.abs().is_one()) {
+                if b.is_zero() {
+                    return if e.is_positive() {
+                        Ok(Rat::zero())
+                    } else {
+                        Err(NormError::DivisionByZero)
+                    };
+                }
+                let odd = e.to_integer().is_odd();
+                return Ok(if b.is_negative() && odd {
+                    Rat::int(-1)
+                } else {
+                    Rat::one()
+                });
+            }
+        }
         if e.is_integer() {
             let k = e.to_integer().to_i64().ok_or(Limit::Exponent)?;
             return int_pow(base, k);

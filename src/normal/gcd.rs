@@ -60,6 +60,9 @@ pub fn div_exact(a: &Poly, b: &Poly) -> Result<Option<Poly>, Limit> {
         if q_terms.len() > super::poly::max_terms() {
             return Err(Limit::Terms);
         }
+        if q_terms.len() % 256 == 0 {
+            super::poly::check_deadline()?;
+        }
     }
     Ok(Some(Poly::from_terms(q_terms)))
 }
@@ -71,14 +74,20 @@ pub fn div_exact(a: &Poly, b: &Poly) -> Result<Option<Poly>, Limit> {
 /// only ever proves coprimality; `false` means "not shown", and the exact gcd runs.
 fn coprime_by_evaluation(a: &Poly, b: &Poly) -> bool {
     let aa = a.atoms();
-    let common: Vec<AtomId> = b.atoms().into_iter().filter(|v| aa.binary_search(v).is_ok()).collect();
+    let common: Vec<AtomId> = b
+        .atoms()
+        .into_iter()
+        .filter(|v| aa.binary_search(v).is_ok())
+        .collect();
     'vars: for &v in &common {
         for attempt in 0..3u64 {
             let value = |x: AtomId| -> u64 {
-                let h = (u64::from(x) + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ attempt.wrapping_mul(0xD6E8_FEB8_6659_FD93);
+                let h = (u64::from(x) + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+                    ^ attempt.wrapping_mul(0xD6E8_FEB8_6659_FD93);
                 h % (P - 2) + 2
             };
-            let (Some(ua), Some(ub)) = (image_mod_p(a, v, &value), image_mod_p(b, v, &value)) else {
+            let (Some(ua), Some(ub)) = (image_mod_p(a, v, &value), image_mod_p(b, v, &value))
+            else {
                 continue;
             };
             if gcd_degree_mod_p(ua, ub) == 0 {
@@ -294,6 +303,7 @@ fn prem(a: &Poly, b: &Poly, v: AtomId) -> Result<Poly, Limit> {
         let shift = Poly::term(Mono::atom(v, dr - db), Q::one());
         r = lc_b.mul(&r)?.sub(&lc_r.mul(&shift)?.mul(b)?);
         r = r.primitive();
+        super::poly::check_deadline()?;
         guard += 1;
         if guard > dr.saturating_add(2) * 4 + 64 {
             return Err(Limit::Terms);

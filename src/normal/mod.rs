@@ -29,6 +29,10 @@ pub enum Limit {
     Terms,
     /// An exponent would not fit.
     Exponent,
+    /// A number would have more digits than rigor computes with.
+    Digits,
+    /// The time budget of the current claim ran out.
+    Time,
 }
 
 impl fmt::Display for Limit {
@@ -40,6 +44,12 @@ impl fmt::Display for Limit {
                 poly::max_terms()
             ),
             Limit::Exponent => write!(f, "an exponent exceeds {}", mono::MAX_EXPONENT),
+            Limit::Digits => write!(
+                f,
+                "a number would have more than {} digits",
+                poly::MAX_BITS * 3 / 10
+            ),
+            Limit::Time => f.write_str("the time budget ran out (see --timeout)"),
         }
     }
 }
@@ -66,7 +76,9 @@ impl From<Limit> for NormError {
 impl fmt::Display for NormError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            NormError::DivisionByZero => f.write_str("division by an expression that is exactly zero"),
+            NormError::DivisionByZero => {
+                f.write_str("division by an expression that is exactly zero")
+            }
             NormError::ZeroToZero => f.write_str("0^0 is undefined"),
             NormError::Domain(s) => f.write_str(s),
             NormError::Limit(l) => write!(f, "refused: {l}"),

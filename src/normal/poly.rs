@@ -15,6 +15,27 @@ pub type Q = BigRational;
 /// Largest number of terms any intermediate polynomial may have (overridable with [`set_max_terms`]).
 static MAX_TERMS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(2_000_000);
 
+/// Largest size, in bits, of a number produced by a power (about 1.2 million digits).
+pub const MAX_BITS: u64 = 4_000_000;
+
+thread_local! {
+    static DEADLINE: std::cell::Cell<Option<std::time::Instant>> = const { std::cell::Cell::new(None) };
+}
+
+/// Sets (or clears) the wall-clock deadline of the work on this thread; long operations
+/// check it and fail with [`Limit::Time`].
+pub fn set_deadline(d: Option<std::time::Instant>) {
+    DEADLINE.with(|c| c.set(d));
+}
+
+/// Fails with [`Limit::Time`] once this thread's deadline has passed.
+pub fn check_deadline() -> Result<(), Limit> {
+    match DEADLINE.with(|c| c.get()) {
+        Some(d) if std::time::Instant::now() > d => Err(Limit::Time),
+        _ => Ok(()),
+    }
+}
+
 /// Sets the largest number of terms an intermediate polynomial may have.
 pub fn set_max_terms(n: usize) {
     MAX_TERMS.store(n, std::sync::atomic::Ordering::Relaxed);
@@ -69,7 +90,9 @@ impl Poly {
         if q.is_zero() {
             Poly::zero()
         } else {
-            Poly { terms: vec![(m, q)] }
+            Poly {
+                terms: vec![(m, q)],
+            }
         }
     }
 
@@ -106,6 +129,11 @@ impl Poly {
 
     /// Whether this is 0.
     pub fn is_zero(&self) -> bool {
+        self.terms.is_empty()
+    }
+
+    /// Whether this has no terms (is 0).
+    pub fn is_empty(&self) -> bool {
         self.terms.is_empty()
     }
 
@@ -224,7 +252,8 @@ impl Poly {
         let (sb, ib) = integer_form(big);
         let scale = sa * sb;
         let bits = |v: &[(&Mono, BigInt)]| v.iter().map(|t| t.1.bits()).max().unwrap_or(0);
-        let fits = bits(&ia) + bits(&ib) + (usize::BITS - small.len().leading_zeros()) as u64 + 2 < 126;
+        let fits =
+            bits(&ia) + bits(&ib) + (usize::BITS - small.len().leading_zeros()) as u64 + 2 < 126;
         let mut terms: Vec<(Mono, Q)> = if fits {
             let ib: Vec<(&Mono, i128)> = ib.iter().map(|t| (t.0, i128_of(&t.1))).collect();
             let mut acc: HashMap<Mono, i128, FxBuild> = HashMap::with_capacity_and_hasher(
@@ -240,6 +269,7 @@ impl Poly {
                 if acc.len() > max_terms() {
                     return Err(Limit::Terms);
                 }
+                check_deadline()?;
             }
             acc.into_iter()
                 .filter(|t| t.1 != 0)
@@ -264,6 +294,7 @@ impl Poly {
                 if acc.len() > max_terms() {
                     return Err(Limit::Terms);
                 }
+                check_deadline()?;
             }
             acc.into_iter()
                 .filter(|t| !t.1.is_zero())
@@ -283,7 +314,7 @@ impl Poly {
             let (m, q) = &self.terms[0];
             let k32 = u32::try_from(k).map_err(|_| Limit::Exponent)?;
             let m = m.pow(k32).ok_or(Limit::Exponent)?;
-            return Ok(Poly::term(m, pow_q(q, k32)));
+            return Ok(Poly::term(m, pow_q_checked(q, k32)?));
         }
         if self.is_zero() {
             return Ok(Poly::zero());
@@ -508,9 +539,18 @@ impl std::hash::Hasher for Fx {
     }
 }
 
-/// `q^k` exactly.
+/// `q^k` exactly (callers check the size first with [`pow_q_checked`]).
 pub fn pow_q(q: &Q, k: u32) -> Q {
     num_traits::pow::Pow::pow(q, k)
+}
+
+/// `q^k`, refused when the result would exceed [`MAX_BITS`].
+pub fn pow_q_checked(q: &Q, k: u32) -> Result<Q, Limit> {
+    let bits = q.numer().bits().max(q.denom().bits());
+    if bits > 1 && bits.saturating_sub(1).saturating_mul(u64::from(k)) > MAX_BITS {
+        return Err(Limit::Digits);
+    }
+    Ok(pow_q(q, k))
 }
 
 /// Whether expanding an `n`-term sum to the `k`-th power fits the limits: the result

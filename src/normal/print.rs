@@ -169,11 +169,15 @@ fn term(m: &Mono, q: &Q, style: Style, int_only: bool) -> String {
             if d.is_one() {
                 if !n.is_one() {
                     s.push_str(&n.to_string());
-                    s.push_str(" ");
+                    s.push(' ');
                 }
                 s.push_str(&body);
             } else {
-                let top = if n.is_one() { body } else { format!("{n} {body}") };
+                let top = if n.is_one() {
+                    body
+                } else {
+                    format!("{n} {body}")
+                };
                 s.push_str(&format!("\\frac{{{top}}}{{{d}}}"));
             }
         }
@@ -335,7 +339,9 @@ fn atom_text(a: &Atom, style: Style) -> String {
             };
             let et = render(e, style);
             if plain {
-                let et = if e.as_constant().is_some_and(|q| q.is_integer() && !q.is_negative())
+                let et = if e
+                    .as_constant()
+                    .is_some_and(|q| q.is_integer() && !q.is_negative())
                     || is_atomic(e)
                 {
                     et

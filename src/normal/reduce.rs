@@ -130,7 +130,11 @@ pub fn rationalise(num: Poly, den: Poly) -> Result<(Poly, Poly), NormError> {
         let mut conj = Poly::zero();
         for (e, c) in &coeffs {
             let t = c.mul_term(&Mono::atom(s, *e), &Q::one())?;
-            conj = if e % 2 == 1 { conj.sub(&t) } else { conj.add(&t) };
+            conj = if e % 2 == 1 {
+                conj.sub(&t)
+            } else {
+                conj.add(&t)
+            };
         }
         let new_den = reduce(&den.mul(&conj)?)?;
         if new_den.is_zero() || new_den.contains(s) {

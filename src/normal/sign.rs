@@ -38,7 +38,7 @@ impl Sign {
     }
 
     /// The sign of a product.
-    pub fn mul(self, o: Sign) -> Sign {
+    pub fn times(self, o: Sign) -> Sign {
         use Sign::*;
         match (self, o) {
             (Zero, _) | (_, Zero) => Zero,
@@ -52,7 +52,7 @@ impl Sign {
     }
 
     /// The sign of a sum.
-    pub fn add(self, o: Sign) -> Sign {
+    pub fn plus(self, o: Sign) -> Sign {
         use Sign::*;
         match (self, o) {
             (Zero, s) | (s, Zero) => s,
@@ -186,9 +186,9 @@ impl Assumptions {
                 Sign::Neg
             };
             for &(a, e) in m.pairs() {
-                s = s.mul(self.atom(a).pow(e));
+                s = s.times(self.atom(a).pow(e));
             }
-            total = total.add(s);
+            total = total.plus(s);
             if total == Sign::Unknown {
                 break;
             }
@@ -217,7 +217,7 @@ impl Assumptions {
                     Sign::Unknown
                 }
             }
-            (n, d) => n.mul(d),
+            (n, d) => n.times(d),
         }
     }
 }

@@ -47,9 +47,18 @@ impl<'a> Subst<'a> {
         let s = self.signs;
         Ok(match &*at {
             Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => None,
-            Atom::Sqrt(p) => self.poly_changed(p)?.map(|v| func::sqrt(&v, s)).transpose()?,
-            Atom::Root(p, n) => self.poly_changed(p)?.map(|v| func::root(&v, *n, s)).transpose()?,
-            Atom::Abs(p) => self.poly_changed(p)?.map(|v| func::abs(&v, s)).transpose()?,
+            Atom::Sqrt(p) => self
+                .poly_changed(p)?
+                .map(|v| func::sqrt(&v, s))
+                .transpose()?,
+            Atom::Root(p, n) => self
+                .poly_changed(p)?
+                .map(|v| func::root(&v, *n, s))
+                .transpose()?,
+            Atom::Abs(p) => self
+                .poly_changed(p)?
+                .map(|v| func::abs(&v, s))
+                .transpose()?,
             Atom::Sin(u) => self.rat_changed(u)?.map(|v| trig::sin(&v)).transpose()?,
             Atom::Cos(u) => self.rat_changed(u)?.map(|v| trig::cos(&v)).transpose()?,
             Atom::Exp(u) => self.rat_changed(u)?.map(|v| func::exp(&v)).transpose()?,

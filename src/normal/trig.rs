@@ -117,7 +117,11 @@ fn pi_pair(q: &Q) -> Result<Pair, NormError> {
         return exact_pi_twelfths(j);
     }
     // sin(x + π) = −sin x: keep the atom's angle in (0, π).
-    let (r, flip) = if r > Q::one() { (r - Q::one(), true) } else { (r, false) };
+    let (r, flip) = if r > Q::one() {
+        (r - Q::one(), true)
+    } else {
+        (r, false)
+    };
     let pi = atom::intern(Atom::Pi);
     let (c, s) = atoms_of(Rat::poly(Poly::term(Mono::atom(pi, 1), r))?);
     Ok(if flip { (c.neg(), s.neg()) } else { (c, s) })
@@ -141,4 +145,3 @@ pub fn tan(u: &Rat) -> Result<Rat, NormError> {
     }
     s.div(&c)
 }
-

@@ -12,7 +12,10 @@ fn check_one(path: &Path) -> FileReport {
 
 /// The diagnostics as the terminal shows them, with the file name only.
 fn rendered(r: &FileReport, path: &Path) -> String {
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
     r.diagnostics
         .iter()
         .map(|d| rigor::diag::render(d, &name, &r.source))
@@ -46,14 +49,31 @@ fn failing_fixtures_fail_with_their_diagnostic() {
     });
 }
 
+fn cite(facts: &[String]) -> String {
+    facts
+        .iter()
+        .map(|f| {
+            if f.starts_with("line ") {
+                f.clone()
+            } else {
+                format!("[{f}]")
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 fn justification(s: &Status) -> String {
     match s {
-        Status::Verified { how, side_conditions } => {
+        Status::Verified {
+            how,
+            side_conditions,
+        } => {
             let how = match how {
                 Justification::Identity => "identity".to_string(),
-                Justification::Facts(f) => format!("from {}", f.join(", ")),
+                Justification::Facts(f) => format!("from {}", cite(f)),
                 Justification::Signs(f) if f.is_empty() => "signs".to_string(),
-                Justification::Signs(f) => format!("signs, from {}", f.join(", ")),
+                Justification::Signs(f) => format!("signs, from {}", cite(f)),
                 Justification::Approx => "approx".to_string(),
             };
             if side_conditions.is_empty() {
@@ -73,10 +93,18 @@ fn handout_derivations_verify() {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("derivations");
     insta::glob!("../..", "derivations/*.deriv", |path| {
         let r = check_one(path);
-        assert!(r.ok(), "{} must verify:\n{}", dir.display(), rendered(&r, path));
+        assert!(
+            r.ok(),
+            "{} must verify:\n{}",
+            dir.display(),
+            rendered(&r, path)
+        );
         let mut out = String::new();
         for c in &r.claims {
-            let label = c.label.clone().map_or_else(|| "(unlabelled)".into(), |l| format!("[{l}]"));
+            let label = c
+                .label
+                .clone()
+                .map_or_else(|| "(unlabelled)".into(), |l| format!("[{l}]"));
             out.push_str(&format!("{label} line {}\n", c.line));
             for l in &c.links {
                 out.push_str(&format!(
@@ -95,7 +123,10 @@ fn handout_derivations_verify() {
 #[test]
 fn results_come_in_a_stable_order() {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("derivations");
-    let a: Vec<String> = check_paths(&[dir.clone()], &Options::default()).into_iter().map(|r| r.path).collect();
+    let a: Vec<String> = check_paths(std::slice::from_ref(&dir), &Options::default())
+        .into_iter()
+        .map(|r| r.path)
+        .collect();
     let mut sorted = a.clone();
     sorted.sort();
     assert_eq!(a, sorted);
