@@ -143,6 +143,14 @@ pub fn diagnose(a: &Rat, b: &Rat, d: &Rat) -> Option<String> {
                 show_q(&c)
             ));
         }
+        let mut syms = Vec::new();
+        symbols_in(&r, &mut syms);
+        if syms.is_empty() && r.num().len() == 1 && r.den().len() == 1 {
+            return Some(format!(
+                "the left side is {} × the right side (a constant factor)",
+                plain(&r)
+            ));
+        }
         if r.num().len() == 1 && r.den().len() == 1 {
             let note = if r.atoms().len() == 1 {
                 "a wrong power?"

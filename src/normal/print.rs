@@ -213,7 +213,8 @@ fn factors(m: &Mono, style: Style) -> Vec<String> {
         let atom = get(a);
         if let Atom::Sqrt(p) = &*atom {
             if let Some(c) = p.as_constant() {
-                if c.is_integer() && e == 1 {
+                // Merge only radicands the parser splits back into the same primes.
+                if c.is_integer() && e == 1 && c.to_integer() < BigInt::from(10_000) {
                     radical *= c.to_integer();
                     continue;
                 }

@@ -81,6 +81,23 @@ fn pair(u: &Rat) -> Result<Pair, NormError> {
         });
     };
     let pi = atom::intern(Atom::Pi);
+    // Expanding multiples of several angles multiplies out fast: beyond a total multiple
+    // of MAX_MULTIPLE the argument stays one atom (never wrong, at worst undecided).
+    let budget: i64 = p
+        .terms()
+        .iter()
+        .filter(|(m, _)| m.pairs() != [(pi, 1)] && !m.is_one())
+        .map(|(_, q)| q.numer().to_i64().map_or(i64::MAX, |k| k.saturating_abs()))
+        .fold(0i64, |a, b| a.saturating_add(b));
+    if budget > MAX_MULTIPLE && p.len() > 1 {
+        let neg = p.lead().is_some_and(|t| t.1.is_negative());
+        return Ok(if neg {
+            let (c, s) = atoms_of(u.neg());
+            (c, s.neg())
+        } else {
+            atoms_of(u.clone())
+        });
+    }
     let mut total: Pair = (Rat::one(), Rat::zero());
     for (m, q) in p.terms() {
         let part = if m.pairs() == [(pi, 1)] {
