@@ -82,6 +82,10 @@ pub fn decide_where(a: &Rat, b: &Rat, s: &Assumptions, defined: &[(Rat, Need)]) 
     if d.is_zero() {
         return Verdict::Equal;
     }
+    // Trigonometric atoms of related angles: rewrite in a common base angle and retry.
+    if crate::normal::trig::rebase(&d, s).is_ok_and(|r| r.is_zero()) {
+        return Verdict::Equal;
+    }
     let exact = independent(&d);
     let counterexample = find_counterexample_where(a, b, s, defined);
     if !exact && counterexample.is_none() {

@@ -777,9 +777,15 @@ impl<'l, 'o> Checker<'l, 'o> {
                 ))
             }
         };
-        let diff = a
+        let mut diff = a
             .sub(&b)
             .map_err(|e| Diagnostic::error("E0101", e.to_string(), span, ""))?;
+        if !diff.is_zero() {
+            // Sines and cosines of related angles, rewritten in a common base angle.
+            if crate::normal::trig::rebase(&diff, &signs).is_ok_and(|r| r.is_zero()) {
+                diff = Rat::zero();
+            }
+        }
         if diff.is_zero() && divisors.is_empty() && link.op == RelOp::Eq {
             // An identity with nothing to assume: no facts needed.
             return Ok(Status::Verified {

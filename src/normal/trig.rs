@@ -11,7 +11,8 @@ use super::poly::{Poly, Q};
 use super::rat::Rat;
 use super::NormError;
 use num_bigint::BigInt;
-use num_traits::{One, Signed, ToPrimitive};
+use num_integer::Integer;
+use num_traits::{One, Signed, ToPrimitive, Zero};
 
 /// Multiples larger than this stay unexpanded atoms (`sin(1000 x)`).
 const MAX_MULTIPLE: i64 = 32;
@@ -161,4 +162,65 @@ pub fn tan(u: &Rat) -> Result<Rat, NormError> {
         return Err(NormError::DivisionByZero);
     }
     s.div(&c)
+}
+
+/// Rewrites sines and cosines of different multiples of the same angle in terms of
+/// their common base angle (`sin(θ)` and `sin(θ/2)` both in terms of `θ/2`), so that
+/// identities such as `sin θ = 2 sin(θ/2) cos(θ/2)` normalise to zero. Multiples above
+/// the expansion limit are left alone.
+pub fn rebase(r: &Rat, s: &super::sign::Assumptions) -> Result<Rat, NormError> {
+    use std::collections::HashMap;
+    let mut groups: HashMap<Mono, Vec<(super::atom::AtomId, bool, Q)>> = HashMap::new();
+    for a in r.atoms() {
+        let at = atom::get(a);
+        let (is_sin, u) = match &*at {
+            Atom::Sin(u) => (true, u),
+            Atom::Cos(u) => (false, u),
+            _ => continue,
+        };
+        let Some(p) = u.as_poly() else { continue };
+        if let [(m, c)] = p.terms() {
+            groups
+                .entry(m.clone())
+                .or_default()
+                .push((a, is_sin, c.clone()));
+        }
+    }
+    let mut map: HashMap<super::atom::AtomId, Rat> = HashMap::new();
+    for (m, items) in groups {
+        let mut cs: Vec<&Q> = items.iter().map(|i| &i.2).collect();
+        cs.sort();
+        cs.dedup();
+        if cs.len() < 2 {
+            continue;
+        }
+        // gcd of rationals: gcd of numerators over lcm of denominators.
+        let mut num = BigInt::zero();
+        let mut den = BigInt::one();
+        for c in &cs {
+            num = num.gcd(c.numer());
+            den = den.lcm(c.denom());
+        }
+        let g = Q::new(num, den);
+        let ks: Option<Vec<i64>> = items
+            .iter()
+            .map(|i| {
+                (&i.2 / &g)
+                    .to_integer()
+                    .to_i64()
+                    .filter(|k| k.abs() <= MAX_MULTIPLE)
+            })
+            .collect();
+        let Some(ks) = ks else { continue };
+        let base = atoms_of(Rat::poly(Poly::term(m.clone(), g.clone()))?);
+        for (item, k) in items.iter().zip(ks) {
+            let (c, sn) = multiple(&base, k)?;
+            map.insert(item.0, if item.1 { sn } else { c });
+        }
+    }
+    if map.is_empty() {
+        return Ok(r.clone());
+    }
+    let f = |a: super::atom::AtomId| map.get(&a).cloned();
+    super::subst::Subst::new(&f, s).rat(r)
 }
