@@ -1053,7 +1053,15 @@ impl<'l, 'o> Checker<'l, 'o> {
                     Err(diag)
                 }
             }
-            RelOp::Approx => self.approx(&ra, &rb, &link.rhs, span, conditions),
+            RelOp::Approx => {
+                // Each side's value: unknowns and fixed parameters replaced by the facts.
+                let value = |r: &Rat| {
+                    super::solve::reduce_fully(r, &used_facts, &is_unknown, &signs, Some(deadline))
+                        .unwrap_or_else(|_| r.clone())
+                };
+                let (va, vb) = (value(&a), value(&b));
+                self.approx(&va, &vb, &link.rhs, span, conditions)
+            }
         }
     }
 
@@ -1228,15 +1236,19 @@ impl<'l, 'o> Checker<'l, 'o> {
                 span,
                 "not this close",
             )
-            .note(format!(
-                "left / right ≈ {}, so the left side is ≈ {} × (right side / {}), which does not round to {}",
-                ev.rat(&ratio).map_or_else(|| "?".into(), |r| r.to_decimal_string(6)),
-                ev.rat(&ratio)
-                    .and_then(|r| r.mul(&crate::interval::Interval::point(c.clone()), ev.prec))
-                    .map_or_else(|| "?".into(), |r| r.to_decimal_string(6)),
-                show(&c),
-                show(&c)
-            ))),
+            .note({
+                let r = ev.rat(&ratio);
+                let scaled = r
+                    .as_ref()
+                    .and_then(|r| r.mul(&crate::interval::Interval::point(c.clone()), ev.prec));
+                format!(
+                    "left / right ≈ {}; so where the right side says {}, the left side is ≈ {}, which does not round to {} at the precision written",
+                    r.map_or_else(|| "?".into(), |r| r.to_decimal_string(6)),
+                    show(&c),
+                    scaled.map_or_else(|| "?".into(), |r| r.to_decimal_string(6)),
+                    show(&c)
+                )
+            })),
             _ => Err(Diagnostic::error(
                 "E0302",
                 "`~=` is not verified: rigor could not bound the ratio precisely enough",

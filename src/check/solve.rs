@@ -247,6 +247,31 @@ fn solve_for(f: &Rat, u: AtomId, signs: &Assumptions) -> Result<Option<Solution>
     Ok(Some(Solution { value, divisor }))
 }
 
+/// `target` with every unknown the facts determine replaced, and then every parameter
+/// that a fact free of unknowns fixes (a given `g = 9.81`): the value of a side.
+pub fn reduce_fully(
+    target: &Rat,
+    facts: &[Fact],
+    is_unknown: &dyn Fn(AtomId) -> bool,
+    signs: &Assumptions,
+    deadline: Option<Instant>,
+) -> Result<Rat, NormError> {
+    let first = eliminate_with(target, facts, is_unknown, signs, deadline, false)?;
+    let mut rest: Vec<Fact> = Vec::new();
+    for f in facts {
+        if let Ok(v) = apply_steps(&f.value, &first.steps, signs) {
+            if !v.is_zero() && !v.atoms().iter().any(|a| is_unknown(*a)) {
+                rest.push(Fact {
+                    value: v,
+                    name: f.name.clone(),
+                });
+            }
+        }
+    }
+    let any_symbol = |a: AtomId| atom::sym_name(a).is_some();
+    Ok(eliminate_with(&first.target, &rest, &any_symbol, signs, deadline, true)?.target)
+}
+
 /// Whether `d` is zero by the facts, shown by eliminating atoms only with coefficients
 /// that are provably nonzero (so the conclusion holds without side conditions).
 pub fn zero_by_facts(d: &Rat, facts: &[Fact], signs: &Assumptions) -> bool {
