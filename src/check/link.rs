@@ -600,7 +600,6 @@ impl<'l, 'o> Checker<'l, 'o> {
         let mut prev = first;
         let mut prev_divs = divs;
         let mut new_facts = Vec::new();
-        let mut all_ok = true;
         for (i, link) in chain.links.iter().enumerate() {
             let span = if i == 0 {
                 chain.first.span.to(link.span)
@@ -620,7 +619,6 @@ impl<'l, 'o> Checker<'l, 'o> {
                         Status::Error
                     },
                 });
-                all_ok = false;
                 break;
             };
             let mut all_divs = prev_divs.clone();
@@ -634,11 +632,11 @@ impl<'l, 'o> Checker<'l, 'o> {
             if status.is_verified() && link.op == RelOp::Eq {
                 if let Ok(v) = prev.sub(&rhs) {
                     if subs.is_empty() {
-                        new_facts.push(v);
+                        // The step's own conditions travel with the fact it becomes.
+                        new_facts.push((v, all_divs.clone()));
                     }
                 }
             }
-            all_ok &= status.is_verified();
             claim.links.push(LinkReport {
                 span,
                 op: link.op,
@@ -652,20 +650,20 @@ impl<'l, 'o> Checker<'l, 'o> {
         // A verified claim becomes a fact (the chain's equalities); with `where`, it is a
         // special case and adds nothing general.
         let name = self.fact_name(&label, span);
-        let _ = all_ok;
-        for v in &new_facts {
+        for (v, divs) in &new_facts {
             self.facts.push(Known {
                 label: label.clone(),
                 fact: Fact {
                     value: v.clone(),
                     name: name.clone(),
                 },
-                divisors: Vec::new(),
+                divisors: divs.clone(),
             });
         }
         if let Some(l) = &label {
             if claim.verified() && !new_facts.is_empty() {
-                self.exports.claims.insert(l.clone(), new_facts);
+                let eqs = new_facts.into_iter().map(|f| f.0).collect();
+                self.exports.claims.insert(l.clone(), eqs);
             }
         }
         self.report.claims.push(claim);
