@@ -71,6 +71,18 @@ pub fn decide(a: &Rat, b: &Rat, s: &Assumptions) -> Verdict {
 /// Decides `a = b` where the sides are defined: a counterexample must also satisfy
 /// `defined` (divisors nonzero, arguments of `ln` positive, of square roots nonnegative).
 pub fn decide_where(a: &Rat, b: &Rat, s: &Assumptions, defined: &[(Rat, Need)]) -> Verdict {
+    decide_with(a, b, s, defined, true)
+}
+
+/// The verdict alone, as fast as possible: when the difference is a nonzero rational
+/// function of independent atoms, "not equal" needs no counterexample, so none is
+/// searched for and no diagnosis is written (for bulk decisions; the verdict is the
+/// same as [`decide`]'s).
+pub fn decide_verdict(a: &Rat, b: &Rat, s: &Assumptions) -> Verdict {
+    decide_with(a, b, s, &[], false)
+}
+
+fn decide_with(a: &Rat, b: &Rat, s: &Assumptions, defined: &[(Rat, Need)], explain: bool) -> Verdict {
     let d = match a.sub(b) {
         Ok(d) => d,
         Err(e) => {
@@ -87,6 +99,14 @@ pub fn decide_where(a: &Rat, b: &Rat, s: &Assumptions, defined: &[(Rat, Need)]) 
         return Verdict::Equal;
     }
     let exact = independent(&d);
+    if exact && !explain {
+        return Verdict::NotEqual {
+            difference: d,
+            exact,
+            counterexample: None,
+            diagnosis: None,
+        };
+    }
     let counterexample = find_counterexample_where(a, b, s, defined);
     if !exact && counterexample.is_none() {
         let dependent: Vec<String> = d
@@ -350,12 +370,46 @@ impl<'a> Evaluator<'a> {
 
     /// An enclosure of `r` at the point, `None` where undefined or not evaluable.
     pub fn rat(&mut self, r: &Rat) -> Option<Interval> {
+        if let Some(q) = self.exact(r) {
+            return q.map(Interval::point);
+        }
         let n = self.poly(r.num())?;
         if r.den().is_one() {
             return Some(n);
         }
         let d = self.poly(r.den())?;
         n.div(&d, self.prec)
+    }
+
+    /// Exact rational value when every atom is a symbol with a value: `Some(None)` where
+    /// the denominator vanishes, `None` when exact evaluation does not apply.
+    fn exact(&self, r: &Rat) -> Option<Option<Q>> {
+        let ids = r.atoms();
+        if !ids.iter().all(|a| self.point.contains_key(a)) {
+            return None;
+        }
+        let huge = |p: &Poly| p.terms().iter().any(|(m, _)| m.pairs().iter().any(|t| t.1 > 4096));
+        if huge(r.num()) || huge(r.den()) {
+            return None;
+        }
+        let eval = |p: &Poly| -> Q {
+            let mut total = Q::zero();
+            for (m, q) in p.terms() {
+                let mut t = q.clone();
+                for &(a, e) in m.pairs() {
+                    if let Some(v) = self.point.get(&a) {
+                        t *= crate::normal::poly::pow_q(v, e);
+                    }
+                }
+                total += t;
+            }
+            total
+        };
+        let den = eval(r.den());
+        if den.is_zero() {
+            return Some(None);
+        }
+        Some(Some(eval(r.num()) / den))
     }
 
     fn poly(&mut self, p: &Poly) -> Option<Interval> {
