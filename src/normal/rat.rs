@@ -11,6 +11,11 @@ use super::reduce::{rationalise, reduce};
 use super::{Limit, NormError};
 use num_traits::{One, Zero};
 
+/// `a / b` for a divisor known to divide exactly.
+fn exact(a: &Poly, b: &Poly) -> Result<Poly, NormError> {
+    div_exact(a, b)?.ok_or(NormError::Limit(Limit::Terms))
+}
+
 /// A normal form: a reduced rational function over ℚ in atoms.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct Rat {
@@ -168,9 +173,76 @@ impl Rat {
             }
             return Rat::cancel(num, self.den.clone()).map_err(NormError::from);
         }
+        if self.free() && o.free() {
+            // Henrici: with g = gcd(b, d), a/b + c/d = (a·d' + c·b') / (g·b'·d'), and only
+            // g can share a factor with that numerator.
+            let (b, d) = (&self.den, &o.den);
+            let g = gcd(b, d)?;
+            let (b1, d1) = if g.is_one() {
+                (b.clone(), d.clone())
+            } else {
+                (exact(b, &g)?, exact(d, &g)?)
+            };
+            let num = self.num.mul(&d1)?.add(&o.num.mul(&b1)?);
+            if num.is_zero() {
+                return Ok(Rat::zero());
+            }
+            let den = b1.mul(&d1)?;
+            if g.is_one() {
+                return Ok(Rat::monic(num, den));
+            }
+            let h = gcd(&num, &g)?;
+            let (num, g) = if h.is_one() {
+                (num, g)
+            } else {
+                (exact(&num, &h)?, exact(&g, &h)?)
+            };
+            return Ok(Rat::monic(num, den.mul(&g)?));
+        }
         let num = self.num.mul(&o.den)?.add(&o.num.mul(&self.den)?);
         let den = self.den.mul(&o.den)?;
         Rat::new(num, den)
+    }
+
+    /// Whether no atom of `self` carries a rewrite rule, so products of its parts need no
+    /// reduction and cancellation can work factor by factor.
+    fn free(&self) -> bool {
+        let mut ids = self.num.atoms();
+        ids.extend(self.den.atoms());
+        super::atom::rules(&ids)
+            .iter()
+            .all(|r| *r == super::atom::Rule::Free)
+    }
+
+    /// `num/den` already in lowest terms: only the denominator is made monic.
+    fn monic(num: Poly, den: Poly) -> Rat {
+        let lc = den.lead().map(|t| t.1.clone()).unwrap_or_else(Q::one);
+        if lc.is_one() {
+            return Rat { num, den };
+        }
+        let inv = lc.recip();
+        Rat {
+            num: num.scale(&inv),
+            den: den.scale(&inv),
+        }
+    }
+
+    /// `(a/b)·(c/d)` for reduced fractions of rule-free atoms: cancel `gcd(a, d)` and
+    /// `gcd(c, b)`; the result is in lowest terms.
+    fn mul_free(a: &Poly, b: &Poly, c: &Poly, d: &Poly) -> Result<Rat, NormError> {
+        let g1 = gcd(a, d)?;
+        let g2 = gcd(c, b)?;
+        let (a, d) = if g1.is_one() {
+            (a.clone(), d.clone())
+        } else {
+            (exact(a, &g1)?, exact(d, &g1)?)
+        };
+        let (c, b) = if g2.is_one() {
+            (c.clone(), b.clone())
+        } else {
+            (exact(c, &g2)?, exact(b, &g2)?)
+        };
+        Ok(Rat::monic(a.mul(&c)?, b.mul(&d)?))
     }
 
     /// The negation.
@@ -197,6 +269,9 @@ impl Rat {
         if let Some(c) = self.as_constant() {
             return Ok(o.scale(&c));
         }
+        if self.free() && o.free() {
+            return Rat::mul_free(&self.num, &self.den, &o.num, &o.den);
+        }
         Rat::new(self.num.mul(&o.num)?, self.den.mul(&o.den)?)
     }
 
@@ -218,6 +293,9 @@ impl Rat {
         }
         if let Some(c) = o.as_constant() {
             return Ok(self.scale(&c.recip()));
+        }
+        if self.free() && o.free() {
+            return Rat::mul_free(&self.num, &self.den, &o.den, &o.num);
         }
         Rat::new(self.num.mul(&o.den)?, self.den.mul(&o.num)?)
     }
