@@ -82,7 +82,13 @@ pub fn decide_verdict(a: &Rat, b: &Rat, s: &Assumptions) -> Verdict {
     decide_with(a, b, s, &[], false)
 }
 
-fn decide_with(a: &Rat, b: &Rat, s: &Assumptions, defined: &[(Rat, Need)], explain: bool) -> Verdict {
+fn decide_with(
+    a: &Rat,
+    b: &Rat,
+    s: &Assumptions,
+    defined: &[(Rat, Need)],
+    explain: bool,
+) -> Verdict {
     let d = match a.sub(b) {
         Ok(d) => d,
         Err(e) => {
@@ -388,7 +394,11 @@ impl<'a> Evaluator<'a> {
         if !ids.iter().all(|a| self.point.contains_key(a)) {
             return None;
         }
-        let huge = |p: &Poly| p.terms().iter().any(|(m, _)| m.pairs().iter().any(|t| t.1 > 4096));
+        let huge = |p: &Poly| {
+            p.terms()
+                .iter()
+                .any(|(m, _)| m.pairs().iter().any(|t| t.1 > 4096))
+        };
         if huge(r.num()) || huge(r.den()) {
             return None;
         }

@@ -784,6 +784,10 @@ impl<'l, 'o> Checker<'l, 'o> {
                 diff = Rat::zero();
             }
         }
+        // `by [..]` must name facts before this line, even where none is needed.
+        if matches!(by, Some(By::Labels(_))) && self.facts_for(by).is_err() {
+            return Ok(Status::Error);
+        }
         if diff.is_zero() && divisors.is_empty() && link.op == RelOp::Eq {
             // An identity with nothing to assume: no facts needed.
             return Ok(Status::Verified {
@@ -1082,8 +1086,8 @@ impl<'l, 'o> Checker<'l, 'o> {
             format!(" (after using {})", cite(via))
         };
         let mut notes = vec![
-            format!("left side:  {}", plain(a)),
-            format!("right side: {}", plain(b)),
+            format!("left side:  {}", short(&plain(a))),
+            format!("right side: {}", short(&plain(b))),
         ];
         if !via.is_empty() {
             notes.push(
@@ -1336,6 +1340,19 @@ fn cite(facts: &[String]) -> String {
         })
         .collect::<Vec<_>>()
         .join(", ")
+}
+
+/// A normal form for a diagnostic: very long ones are cut, with their length said.
+fn short(s: &str) -> String {
+    const MAX: usize = 2000;
+    if s.len() <= MAX {
+        return s.to_string();
+    }
+    let mut cut = MAX;
+    while !s.is_char_boundary(cut) {
+        cut -= 1;
+    }
+    format!("{} … ({} characters in all)", &s[..cut], s.len())
 }
 
 fn names(ids: &[AtomId]) -> String {

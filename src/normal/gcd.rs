@@ -241,10 +241,13 @@ fn gcd_nomono(a: &Poly, b: &Poly) -> Result<Poly, Limit> {
         return gcd(a, &c);
     }
     // The main variable: the one of lowest degree keeps the remainder sequence short.
-    let Some(&v) = aa
-        .iter()
-        .min_by_key(|v| (a.degree_in(**v).max(b.degree_in(**v)), a.len().min(b.len()), **v))
-    else {
+    let Some(&v) = aa.iter().min_by_key(|v| {
+        (
+            a.degree_in(**v).max(b.degree_in(**v)),
+            a.len().min(b.len()),
+            **v,
+        )
+    }) else {
         return Ok(Poly::one());
     };
     let ca = content_in(a, v)?;

@@ -15,8 +15,8 @@ pub type Q = BigRational;
 /// Largest number of terms any intermediate polynomial may have (overridable with [`set_max_terms`]).
 static MAX_TERMS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(2_000_000);
 
-/// Largest size, in bits, of a number produced by a power (about 1.2 million digits).
-pub const MAX_BITS: u64 = 4_000_000;
+/// Largest size, in bits, of a number produced by a power (about 120,000 digits).
+pub const MAX_BITS: u64 = 400_000;
 
 thread_local! {
     static DEADLINE: std::cell::Cell<Option<std::time::Instant>> = const { std::cell::Cell::new(None) };

@@ -4,6 +4,8 @@ mod calculus;
 mod check;
 mod cli;
 mod equiv;
+mod fuzz;
+mod hostile;
 mod normal;
 mod props;
 mod workloads;

@@ -1,0 +1,28 @@
+//! The whole checker on one source text, with small limits so that every run is short.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use rigor::check::{check_source, Options};
+use std::path::Path;
+use std::time::Duration;
+
+fuzz_target!(|data: &[u8]| {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    rigor::normal::poly::set_max_terms(2_000);
+    let opts = Options {
+        timeout: Duration::from_millis(200),
+        ..Options::default()
+    };
+    // A path inside an empty folder: `use` finds nothing to import.
+    let report = check_source(Path::new("fuzz-empty-dir/input.deriv"), text, &opts);
+    // Rendering the report must not panic either.
+    let _ = rigor::render::human::report(&report, true);
+    let _ = rigor::render::json::report(&report);
+    let _ = rigor::render::github::report(&report);
+    if report.ast.is_some() {
+        let _ = rigor::render::latex::document(&report);
+        let _ = rigor::render::markdown::document(&report);
+    }
+});

@@ -1,0 +1,21 @@
+//! The expression parser, and lowering to the normal form of whatever parses.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use rigor::syntax::{parse_expr, ParseOptions};
+
+fuzz_target!(|data: &[u8]| {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let Ok(e) = parse_expr(text, &ParseOptions::default()) else {
+        return;
+    };
+    // Whatever parses is lowered too, within a small budget: no input may panic.
+    rigor::normal::poly::set_max_terms(2_000);
+    rigor::normal::poly::set_deadline(Some(
+        std::time::Instant::now() + std::time::Duration::from_millis(200),
+    ));
+    let _ = rigor::lower::lower(&e, &rigor::lower::Env::default());
+    rigor::normal::poly::set_deadline(None);
+});
