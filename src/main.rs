@@ -17,6 +17,9 @@ struct Cli {
     /// Deepest nesting of parentheses and calls accepted.
     #[arg(long, global = true, default_value_t = 200)]
     max_depth: usize,
+    /// Largest number of decimal digits a power may produce.
+    #[arg(long, global = true, default_value_t = 120_000)]
+    max_digits: u64,
     /// Wall-clock budget, in seconds, per claim (`check`) or per command (`simplify`, `equiv`).
     #[arg(long, global = true, default_value_t = 10.0)]
     timeout: f64,
@@ -107,6 +110,7 @@ fn main() -> ExitCode {
         }
     };
     rigor::normal::poly::set_max_terms(cli.max_terms);
+    rigor::normal::poly::set_max_bits(cli.max_digits.saturating_mul(10) / 3);
     let opts = rigor::syntax::ParseOptions {
         max_depth: cli.max_depth,
     };

@@ -46,8 +46,8 @@ impl fmt::Display for Limit {
             Limit::Exponent => write!(f, "an exponent exceeds {}", mono::MAX_EXPONENT),
             Limit::Digits => write!(
                 f,
-                "a number would have more than {} digits",
-                poly::MAX_BITS * 3 / 10
+                "a number would have more than {} digits (see --max-digits)",
+                poly::max_bits() * 3 / 10
             ),
             Limit::Time => f.write_str("the time budget ran out (see --timeout)"),
         }

@@ -15,8 +15,20 @@ pub type Q = BigRational;
 /// Largest number of terms any intermediate polynomial may have (overridable with [`set_max_terms`]).
 static MAX_TERMS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(2_000_000);
 
-/// Largest size, in bits, of a number produced by a power (about 120,000 digits).
+/// Default largest size, in bits, of a number produced by a power (about 120,000 digits).
 pub const MAX_BITS: u64 = 400_000;
+
+static MAX_BITS_NOW: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(MAX_BITS);
+
+/// Sets the largest size, in bits, of a number produced by a power.
+pub fn set_max_bits(bits: u64) {
+    MAX_BITS_NOW.store(bits, std::sync::atomic::Ordering::Relaxed);
+}
+
+/// The current limit on the size of a number, in bits.
+pub fn max_bits() -> u64 {
+    MAX_BITS_NOW.load(std::sync::atomic::Ordering::Relaxed)
+}
 
 thread_local! {
     static DEADLINE: std::cell::Cell<Option<std::time::Instant>> = const { std::cell::Cell::new(None) };
@@ -544,10 +556,10 @@ pub fn pow_q(q: &Q, k: u32) -> Q {
     num_traits::pow::Pow::pow(q, k)
 }
 
-/// `q^k`, refused when the result would exceed [`MAX_BITS`].
+/// `q^k`, refused when the result would exceed [`max_bits`].
 pub fn pow_q_checked(q: &Q, k: u32) -> Result<Q, Limit> {
     let bits = q.numer().bits().max(q.denom().bits());
-    if bits > 1 && bits.saturating_sub(1).saturating_mul(u64::from(k)) > MAX_BITS {
+    if bits > 1 && bits.saturating_sub(1).saturating_mul(u64::from(k)) > max_bits() {
         return Err(Limit::Digits);
     }
     Ok(pow_q(q, k))
