@@ -1128,6 +1128,11 @@ impl<'l, 'o> Checker<'l, 'o> {
                     "a fact about {} was needed but never given (or `by [..]` left it out)",
                     names(&e.stuck)
                 ));
+                if let Some(hint) = crate::decide::diagnose(ra, rb, &e.target)
+                    .filter(|h| !h.starts_with("the two sides differ by"))
+                {
+                    notes.push(format!("if {} can take any value, {hint}", names(&e.stuck)));
+                }
                 d.notes = notes;
                 return d;
             }
