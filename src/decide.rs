@@ -182,7 +182,11 @@ pub fn diagnose(a: &Rat, b: &Rat, d: &Rat) -> Option<String> {
             ));
         }
         if r.num().len() == 1 && r.den().len() == 1 {
-            let note = if r.atoms().len() == 1 {
+            let one_symbol = match r.atoms().as_slice() {
+                [x] => atom::sym_name(*x).is_some(),
+                _ => false,
+            };
+            let note = if one_symbol {
                 "a wrong power?"
             } else {
                 "a missing or extra factor?"
