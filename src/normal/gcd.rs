@@ -103,8 +103,16 @@ fn coprime_by_evaluation(a: &Poly, b: &Poly) -> bool {
 /// The Mersenne prime 2⁶¹ − 1.
 const P: u64 = (1 << 61) - 1;
 
+/// `a·b mod P` for `a, b < P`, by the Mersenne identity 2⁶¹ ≡ 1 (no 128-bit division).
 fn mulmod(a: u64, b: u64) -> u64 {
-    ((u128::from(a) * u128::from(b)) % u128::from(P)) as u64
+    let x = u128::from(a) * u128::from(b);
+    let r = ((x as u64) & P) + ((x >> 61) as u64);
+    let r = (r & P) + (r >> 61);
+    if r >= P {
+        r - P
+    } else {
+        r
+    }
 }
 
 fn powmod(mut b: u64, mut e: u64) -> u64 {
@@ -317,4 +325,30 @@ fn prem(a: &Poly, b: &Poly, v: AtomId) -> Result<Poly, Limit> {
         }
     }
     Ok(r)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{mulmod, P};
+
+    #[test]
+    fn mersenne_reduction_matches_division() {
+        let samples = [
+            0,
+            1,
+            2,
+            3,
+            P / 2,
+            P - 2,
+            P - 1,
+            0x1234_5678_9abc_def0 % P,
+            (1 << 60) + 7,
+        ];
+        for &a in &samples {
+            for &b in &samples {
+                let want = ((u128::from(a) * u128::from(b)) % u128::from(P)) as u64;
+                assert_eq!(mulmod(a, b), want, "{a} * {b}");
+            }
+        }
+    }
 }
