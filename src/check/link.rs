@@ -1,7 +1,7 @@
 //! The statement walker and the link checker of FORMAT.md §3.
 
 use super::load::{Exports, ImportError, Loader};
-use super::report::{ClaimReport, FileReport, Justification, LinkReport, Status};
+use super::report::{cite, ClaimReport, FileReport, Justification, LinkReport, Status};
 use super::scope::{undeclared, Decl, Scope};
 use super::solve::{
     apply_steps, contradiction, eliminate, unknown_name, zero_by_facts, Elimination, Fact,
@@ -1330,21 +1330,6 @@ fn show(q: &Q) -> String {
             format!("{}/{}", q.numer(), q.denom())
         }
     }
-}
-
-/// `[Fx], [MG], line 12`.
-fn cite(facts: &[String]) -> String {
-    facts
-        .iter()
-        .map(|f| {
-            if f.starts_with("line ") {
-                f.clone()
-            } else {
-                format!("[{f}]")
-            }
-        })
-        .collect::<Vec<_>>()
-        .join(", ")
 }
 
 /// A normal form for a diagnostic: very long ones are cut, with their length said.

@@ -9,4 +9,4 @@ pub mod scope;
 pub mod solve;
 
 pub use load::{check_paths, check_source, Options};
-pub use report::{ClaimReport, FileReport, Justification, LinkReport, Status};
+pub use report::{cite, ClaimReport, FileReport, Justification, LinkReport, Status};

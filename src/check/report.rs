@@ -17,6 +17,36 @@ pub enum Justification {
     Approx,
 }
 
+/// Facts as cited in messages: `[Fx], [MG], line 12` (labels in brackets, unlabelled
+/// facts by their line).
+pub fn cite(facts: &[String]) -> String {
+    facts
+        .iter()
+        .map(|f| {
+            if f.starts_with("line ") {
+                f.clone()
+            } else {
+                format!("[{f}]")
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+impl std::fmt::Display for Justification {
+    /// `identity`, `from [Fx], [MG]`, `signs`, `signs, from [aB]`, `approx`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Justification::Identity => f.write_str("identity"),
+            Justification::Facts(fs) if fs.is_empty() => f.write_str("from the facts"),
+            Justification::Facts(fs) => write!(f, "from {}", cite(fs)),
+            Justification::Signs(fs) if fs.is_empty() => f.write_str("signs"),
+            Justification::Signs(fs) => write!(f, "signs, from {}", cite(fs)),
+            Justification::Approx => f.write_str("approx"),
+        }
+    }
+}
+
 /// The outcome of one link.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Status {

@@ -1,7 +1,7 @@
 //! Terminal output of `rigor check --format human`: rustc-style diagnostics, with
 //! `--verbose` one line per verified link, and the one-line summary.
 
-use crate::check::report::{FileReport, Justification, Status};
+use crate::check::report::{FileReport, Status};
 use crate::diag::{line_col, render};
 
 /// The diagnostics of one file, rendered by [`crate::diag::render`] in their order,
@@ -19,7 +19,7 @@ pub fn report(r: &FileReport, verbose: bool) -> String {
             } = &link.status
             {
                 let (line, col) = line_col(&r.source, link.span.start);
-                let mut s = format!("{}:{line}:{col}: verified ({})", r.path, justification(how));
+                let mut s = format!("{}:{line}:{col}: verified ({how})", r.path);
                 if !side_conditions.is_empty() {
                     s.push_str(&format!(", assuming {}", side_conditions.join(", ")));
                 }
@@ -49,30 +49,6 @@ pub fn report(r: &FileReport, verbose: bool) -> String {
         out.push_str(&s);
     }
     out
-}
-
-/// `identity`, `from [Fx], [MG]`, `signs`, `approx`.
-fn justification(how: &Justification) -> String {
-    let facts = |fs: &[String]| {
-        fs.iter()
-            .map(|f| {
-                if f.starts_with("line ") {
-                    f.clone()
-                } else {
-                    format!("[{f}]")
-                }
-            })
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    match how {
-        Justification::Identity => "identity".to_string(),
-        Justification::Facts(fs) if fs.is_empty() => "from the facts".to_string(),
-        Justification::Facts(fs) => format!("from {}", facts(fs)),
-        Justification::Signs(fs) if fs.is_empty() => "signs".to_string(),
-        Justification::Signs(fs) => format!("signs, from {}", facts(fs)),
-        Justification::Approx => "approx".to_string(),
-    }
 }
 
 /// One line `files: N, claims: C, verified: V, failed: F, errors: E` (with a newline).

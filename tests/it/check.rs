@@ -1,7 +1,7 @@
 //! Checker fixtures: `tests/check/pass` must verify, every `tests/check/fail` file must
 //! fail with the diagnostic in its snapshot, and every handout derivation must verify.
 
-use rigor::check::{check_paths, FileReport, Justification, Options, Status};
+use rigor::check::{check_paths, FileReport, Options, Status};
 use std::path::{Path, PathBuf};
 
 fn check_one(path: &Path) -> FileReport {
@@ -49,33 +49,13 @@ fn failing_fixtures_fail_with_their_diagnostic() {
     });
 }
 
-fn cite(facts: &[String]) -> String {
-    facts
-        .iter()
-        .map(|f| {
-            if f.starts_with("line ") {
-                f.clone()
-            } else {
-                format!("[{f}]")
-            }
-        })
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
 fn justification(s: &Status) -> String {
     match s {
         Status::Verified {
             how,
             side_conditions,
         } => {
-            let how = match how {
-                Justification::Identity => "identity".to_string(),
-                Justification::Facts(f) => format!("from {}", cite(f)),
-                Justification::Signs(f) if f.is_empty() => "signs".to_string(),
-                Justification::Signs(f) => format!("signs, from {}", cite(f)),
-                Justification::Approx => "approx".to_string(),
-            };
+            let how = how.to_string();
             if side_conditions.is_empty() {
                 how
             } else {
