@@ -17,6 +17,10 @@ use num_traits::{One, Signed, ToPrimitive, Zero};
 /// Multiples larger than this stay unexpanded atoms (`sin(1000 x)`).
 const MAX_MULTIPLE: i64 = 32;
 
+/// An argument whose expansion could have more terms than this (the product of
+/// `|k| + 1` over its terms `k·θ`) stays one atom (`cos(a + b + … + z)`).
+const MAX_EXPANSION: u64 = 1 << 16;
+
 /// `(cos u, sin u)`.
 type Pair = (Rat, Rat);
 
@@ -82,15 +86,27 @@ fn pair(u: &Rat) -> Result<Pair, NormError> {
         });
     };
     let pi = atom::intern(Atom::Pi);
-    // Expanding multiples of several angles multiplies out fast: beyond a total multiple
-    // of MAX_MULTIPLE the argument stays one atom (never wrong, at worst undecided).
-    let budget: i64 = p
+    // Each term `k·θ` expands on its own (|k| ≤ MAX_MULTIPLE), exactly as the product
+    // of the separate expansions would, so `cos(A + B)` and `cos A cos B − sin A sin B`
+    // normalise alike. Only when the product of the terms' sizes would exceed
+    // MAX_EXPANSION does the whole argument stay one atom (never wrong, at worst
+    // undecided).
+    let size = p
         .terms()
         .iter()
-        .filter(|(m, _)| m.pairs() != [(pi, 1)] && !m.is_one())
-        .map(|(_, q)| q.numer().to_i64().map_or(i64::MAX, |k| k.saturating_abs()))
-        .fold(0i64, |a, b| a.saturating_add(b));
-    if budget > MAX_MULTIPLE && p.len() > 1 {
+        .filter(|(m, _)| m.pairs() != [(pi, 1)])
+        .map(|(m, q)| {
+            if m.is_one() {
+                2
+            } else {
+                q.numer()
+                    .to_i64()
+                    .filter(|k| k.abs() <= MAX_MULTIPLE)
+                    .map_or(2, |k| k.unsigned_abs() + 1)
+            }
+        })
+        .try_fold(1u64, |a, b| a.checked_mul(b).filter(|n| *n <= MAX_EXPANSION));
+    if size.is_none() && p.len() > 1 {
         let neg = p.lead().is_some_and(|t| t.1.is_negative());
         return Ok(if neg {
             let (c, s) = atoms_of(u.neg());

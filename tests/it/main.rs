@@ -9,3 +9,12 @@ mod hostile;
 mod normal;
 mod props;
 mod workloads;
+
+/// The number of proptest cases: `default`, or `PROPTEST_CASES` when it is set, so a
+/// long soak run (`PROPTEST_CASES=100000 cargo test --release props`) needs no edit.
+pub fn cases(default: u32) -> u32 {
+    std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
+}
