@@ -107,7 +107,10 @@ fn polynomial_antiderivative(f: &Rat, x: AtomId) -> Option<Poly> {
         }
         pairs.push((x, k.checked_add(1)?));
         let m2 = Mono::from_pairs(pairs)?;
-        terms.push((m2, q / Q::from_integer(BigInt::from(u64::from(k) + 1))));
+        terms.push((
+            m2,
+            crate::normal::qops::div(q, &Q::from_integer(BigInt::from(u64::from(k) + 1))),
+        ));
     }
     Some(Poly::from_terms(terms))
 }

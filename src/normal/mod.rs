@@ -9,6 +9,7 @@ pub mod gcd;
 pub mod mono;
 pub mod poly;
 pub mod print;
+pub mod qops;
 pub mod rat;
 pub mod reduce;
 pub mod sign;

@@ -114,7 +114,7 @@ impl Poly {
         let mut out: Vec<(Mono, Q)> = Vec::with_capacity(terms.len());
         for (m, q) in terms {
             match out.last_mut() {
-                Some(last) if last.0 == m => last.1 += q,
+                Some(last) if last.0 == m => last.1 = super::qops::add(&last.1, &q),
                 _ => {
                     if let Some(last) = out.last() {
                         if last.1.is_zero() {
@@ -195,7 +195,7 @@ impl Poly {
                     j += 1;
                 }
                 std::cmp::Ordering::Equal => {
-                    let q = &a[i].1 + &b[j].1;
+                    let q = super::qops::add(&a[i].1, &b[j].1);
                     if !q.is_zero() {
                         out.push((a[i].0.clone(), q));
                     }
@@ -206,6 +206,34 @@ impl Poly {
         }
         out.extend_from_slice(&a[i..]);
         out.extend_from_slice(&b[j..]);
+        Poly { terms: out }
+    }
+
+    /// The sum, consuming both sides (no monomial is copied).
+    pub fn add_owned(self, other: Poly) -> Poly {
+        let mut out = Vec::with_capacity(self.terms.len() + other.terms.len());
+        let mut a = self.terms.into_iter().peekable();
+        let mut b = other.terms.into_iter().peekable();
+        loop {
+            let ord = match (a.peek(), b.peek()) {
+                (Some(x), Some(y)) => x.0.cmp(&y.0),
+                (Some(_), None) => std::cmp::Ordering::Less,
+                (None, Some(_)) => std::cmp::Ordering::Greater,
+                (None, None) => break,
+            };
+            match ord {
+                std::cmp::Ordering::Less => out.extend(a.next()),
+                std::cmp::Ordering::Greater => out.extend(b.next()),
+                std::cmp::Ordering::Equal => {
+                    if let (Some((m, x)), Some((_, y))) = (a.next(), b.next()) {
+                        let q = super::qops::add(&x, &y);
+                        if !q.is_zero() {
+                            out.push((m, q));
+                        }
+                    }
+                }
+            }
+        }
         Poly { terms: out }
     }
 
@@ -227,7 +255,11 @@ impl Poly {
             return Poly::zero();
         }
         Poly {
-            terms: self.terms.iter().map(|(m, c)| (m.clone(), c * q)).collect(),
+            terms: self
+                .terms
+                .iter()
+                .map(|(m, c)| (m.clone(), super::qops::mul(c, q)))
+                .collect(),
         }
     }
 
@@ -238,7 +270,7 @@ impl Poly {
         }
         let mut terms = Vec::with_capacity(self.terms.len());
         for (n, c) in &self.terms {
-            terms.push((n.mul(m).ok_or(Limit::Exponent)?, c * q));
+            terms.push((n.mul(m).ok_or(Limit::Exponent)?, super::qops::mul(c, q)));
         }
         // Multiplying by a monomial preserves a monomial order.
         Ok(Poly { terms })
@@ -257,6 +289,32 @@ impl Poly {
         if small.len() == 1 {
             let (m, q) = &small.terms[0];
             return big.mul_term(m, q);
+        }
+        if small.len() <= 8 {
+            // A short factor: each of its terms shifts `big` in order, and a merge
+            // tree of the sorted shifts needs no hashing.
+            let mut parts = small
+                .terms
+                .iter()
+                .map(|(m, q)| big.mul_term(m, q))
+                .collect::<Result<Vec<Poly>, Limit>>()?;
+            while parts.len() > 1 {
+                let mut next = Vec::with_capacity(parts.len().div_ceil(2));
+                let mut it = parts.into_iter();
+                while let Some(a) = it.next() {
+                    next.push(match it.next() {
+                        Some(b) => a.add_owned(b),
+                        None => a,
+                    });
+                }
+                parts = next;
+                check_deadline()?;
+            }
+            let out = parts.pop().unwrap_or_else(Poly::zero);
+            if out.len() > max_terms() {
+                return Err(Limit::Terms);
+            }
+            return Ok(out);
         }
         // Multiply over ℤ: scale both sides to integer coefficients, multiply, scale back
         // once per result term. Small products accumulate in i128, the rest in BigInt.
@@ -285,7 +343,7 @@ impl Poly {
             }
             acc.into_iter()
                 .filter(|t| t.1 != 0)
-                .map(|(m, c)| (m, Q::from_integer(BigInt::from(c)) * &scale))
+                .map(|(m, c)| (m, scale_int(c, &scale)))
                 .collect()
         } else {
             let mut acc: HashMap<Mono, BigInt, FxBuild> = HashMap::with_capacity_and_hasher(
@@ -310,7 +368,7 @@ impl Poly {
             }
             acc.into_iter()
                 .filter(|t| !t.1.is_zero())
-                .map(|(m, c)| (m, Q::from_integer(c) * &scale))
+                .map(|(m, c)| (m, super::qops::mul(&Q::from_integer(c), &scale)))
                 .collect()
         };
         terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
@@ -333,6 +391,15 @@ impl Poly {
         }
         if !pow_fits(self.len(), k) {
             return Err(Limit::Terms);
+        }
+        if iterate_is_cheaper(self.len(), k) {
+            // A short sum: multiplying by it k − 1 times touches far fewer terms than
+            // squaring (the last squaring alone costs |self^(k/2)|²).
+            let mut result = self.clone();
+            for _ in 1..k {
+                result = result.mul(self)?;
+            }
+            return Ok(result);
         }
         let mut result = Poly::one();
         let mut base = self.clone();
@@ -511,6 +578,14 @@ fn integer_form(p: &Poly) -> (Q, Vec<(&Mono, BigInt)>) {
     (Q::new(BigInt::one(), l), ints)
 }
 
+/// `c · scale` for an integer `c`.
+fn scale_int(c: i128, scale: &Q) -> Q {
+    if scale.is_one() {
+        return Q::from_integer(BigInt::from(c));
+    }
+    super::qops::mul(&Q::from_integer(BigInt::from(c)), scale)
+}
+
 fn i128_of(n: &BigInt) -> i128 {
     num_traits::ToPrimitive::to_i128(n).unwrap_or(0)
 }
@@ -558,6 +633,9 @@ pub fn pow_q(q: &Q, k: u32) -> Q {
 
 /// `q^k`, refused when the result would exceed [`max_bits`].
 pub fn pow_q_checked(q: &Q, k: u32) -> Result<Q, Limit> {
+    if q.is_one() {
+        return Ok(Q::one());
+    }
     let bits = q.numer().bits().max(q.denom().bits());
     if bits > 1 && bits.saturating_sub(1).saturating_mul(u64::from(k)) > max_bits() {
         return Err(Limit::Digits);
@@ -570,6 +648,24 @@ pub fn pow_q_checked(q: &Q, k: u32) -> Result<Q, Limit> {
 pub fn pow_fits(n: usize, k: u64) -> bool {
     let half = estimate_pow_terms(n, k / 2);
     estimate_pow_terms(n, k) <= max_terms() as u128 && half.saturating_mul(half) <= 50_000_000
+}
+
+/// Whether `p^k` for an `n`-term `p` costs less as k − 1 multiplications by `p`
+/// (about Σⱼ n·|p^j| term products) than by repeated squaring (at least |p^(k/2)|²).
+fn iterate_is_cheaper(n: usize, k: u64) -> bool {
+    if k > 4096 {
+        return false;
+    }
+    let half = estimate_pow_terms(n, k / 2);
+    let squaring = half.saturating_mul(half);
+    let mut iterating: u128 = 0;
+    for j in 1..k {
+        iterating = iterating.saturating_add(estimate_pow_terms(n, j).saturating_mul(n as u128));
+        if iterating >= squaring {
+            return false;
+        }
+    }
+    true
 }
 
 /// C(n+k-1, k), the term count of a dense power of an n-term sum, saturating.

@@ -319,6 +319,11 @@ impl Rat {
             // Monomials: no expansion, exponents multiply (x^(10^9) is one term).
             return Rat::new(base.num.pow(e)?, base.den.pow(e)?);
         }
+        if base.free() {
+            // No atom rewrites: powers of coprime polynomials stay coprime and a monic
+            // denominator stays monic, so the powers are already in lowest terms.
+            return Ok(Rat::monic(base.num.pow(e)?, base.den.pow(e)?));
+        }
         // Powers of sums: square and multiply, reducing as we go.
         if !super::poly::pow_fits(base.num.len().max(base.den.len()), e) {
             return Err(Limit::Terms.into());

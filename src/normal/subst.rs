@@ -8,7 +8,6 @@ use super::rat::Rat;
 use super::sign::Assumptions;
 use super::trig;
 use super::NormError;
-use num_traits::One;
 use std::collections::HashMap;
 
 /// Replaces atoms: `map(a)` gives the new value of atom `a` (or `None` to keep it,
@@ -129,26 +128,56 @@ impl<'a> Subst<'a> {
                 }
             }
         }
+        // Powers of the new values, shared by the terms; a one-term value (`x → a`,
+        // `x → 0`) is folded into the term's monomial and coefficient directly.
+        let mut powers: HashMap<(AtomId, u32, bool), Poly> = HashMap::new();
         let mut acc: Vec<(Mono, Q)> = Vec::with_capacity(p.len());
-        for (m, q) in p.terms() {
+        'terms: for (m, q) in p.terms() {
             let mut keep = Vec::new();
-            let mut t = Poly::constant(q.clone());
+            let mut coeff = q.clone();
+            let mut factors: Vec<(AtomId, u32, bool)> = Vec::new();
+            let mut wanted: Vec<(AtomId, u32, bool)> = Vec::new();
             for &(a, e) in m.pairs() {
-                match vals.get(&a) {
-                    Some(v) => t = t.mul(&v.num().pow(u64::from(e))?)?,
-                    None => keep.push((a, e)),
+                if vals.contains_key(&a) {
+                    wanted.push((a, e, false));
+                } else {
+                    keep.push((a, e));
                 }
             }
             for (a, d) in &top {
                 let e = m.exp(*a);
-                if let Some(v) = vals.get(a) {
-                    if !v.den().is_one() && *d > e {
-                        t = t.mul(&v.den().pow(u64::from(d - e))?)?;
+                if *d > e && vals.get(a).is_some_and(|v| !v.den().is_one()) {
+                    wanted.push((*a, d - e, true));
+                }
+            }
+            for (a, e, den) in wanted {
+                let Some(v) = vals.get(&a) else { continue };
+                let base = if den { v.den() } else { v.num() };
+                match base.terms() {
+                    [] => continue 'terms,
+                    [(vm, vq)] => {
+                        coeff = super::qops::mul(&coeff, &super::poly::pow_q_checked(vq, e)?);
+                        let vm = vm.pow(e).ok_or(super::Limit::Exponent)?;
+                        keep.extend_from_slice(vm.pairs());
+                    }
+                    _ => {
+                        if let std::collections::hash_map::Entry::Vacant(slot) =
+                            powers.entry((a, e, den))
+                        {
+                            slot.insert(base.pow(u64::from(e))?);
+                        }
+                        factors.push((a, e, den));
                     }
                 }
             }
             let keep = Mono::from_pairs(keep).ok_or(super::Limit::Exponent)?;
-            acc.extend(t.mul_term(&keep, &Q::one())?.terms().iter().cloned());
+            let mut t = Poly::term(keep, coeff);
+            for k in &factors {
+                if let Some(f) = powers.get(k) {
+                    t = t.mul(f)?;
+                }
+            }
+            acc.extend(t.terms().iter().cloned());
             if acc.len() > super::poly::max_terms().saturating_mul(4) {
                 acc = Poly::from_terms(acc).terms().to_vec();
                 if acc.len() > super::poly::max_terms() {

@@ -105,7 +105,9 @@ fn pair(u: &Rat) -> Result<Pair, NormError> {
                     .map_or(2, |k| k.unsigned_abs() + 1)
             }
         })
-        .try_fold(1u64, |a, b| a.checked_mul(b).filter(|n| *n <= MAX_EXPANSION));
+        .try_fold(1u64, |a, b| {
+            a.checked_mul(b).filter(|n| *n <= MAX_EXPANSION)
+        });
     if size.is_none() && p.len() > 1 {
         let neg = p.lead().is_some_and(|t| t.1.is_negative());
         return Ok(if neg {

@@ -508,7 +508,7 @@ fn file_survives(s: &str) {
 // ---------------------------------------------------------------- the fast set
 
 proptest! {
-    #![proptest_config(Config::with_cases(crate::cases(200)))]
+    #![proptest_config(crate::config(200))]
 
     #[test]
     fn random_text_never_panics_the_parsers(s in text()) {
@@ -525,7 +525,7 @@ proptest! {
 }
 
 proptest! {
-    #![proptest_config(Config::with_cases(crate::cases(60)))]
+    #![proptest_config(crate::config(60))]
 
     #[test]
     fn random_text_never_panics_the_checker(s in text()) {
@@ -541,7 +541,7 @@ proptest! {
 // ---------------------------------------------------------------- the long set
 
 proptest! {
-    #![proptest_config(Config::with_cases(crate::cases(5_000)))]
+    #![proptest_config(crate::config(5_000))]
 
     #[test]
     #[ignore = "long fuzzing run: cargo test -- --ignored"]
@@ -558,7 +558,7 @@ proptest! {
 }
 
 proptest! {
-    #![proptest_config(Config::with_cases(crate::cases(2_000)))]
+    #![proptest_config(crate::config(2_000))]
 
     #[test]
     #[ignore = "long fuzzing run: cargo test -- --ignored"]

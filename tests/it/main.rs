@@ -18,3 +18,14 @@ pub fn cases(default: u32) -> u32 {
         .and_then(|v| v.parse().ok())
         .unwrap_or(default)
 }
+
+/// A proptest configuration of [`cases`]`(default)` cases whose budget of rejected
+/// inputs grows with the number of cases.
+pub fn config(default: u32) -> proptest::test_runner::Config {
+    let cases = cases(default);
+    proptest::test_runner::Config {
+        cases,
+        max_global_rejects: cases.max(1024),
+        ..proptest::test_runner::Config::default()
+    }
+}

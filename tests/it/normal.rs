@@ -259,7 +259,11 @@ fn trigonometry() {
         "cos(31 a/12) cos(2 x) + sin(31 a/12) sin(2 x)",
         "",
     );
-    same("sin(20 a + 20 b)", "sin(20 a) cos(20 b) + cos(20 a) sin(20 b)", "");
+    same(
+        "sin(20 a + 20 b)",
+        "sin(20 a) cos(20 b) + cos(20 a) sin(20 b)",
+        "",
+    );
     // Too many angles for an expansion: one atom, so no blow-up.
     check(
         "cos(a + b + c + d + e + f + g + h + i + j + k + l + m + n + o + p + q)",

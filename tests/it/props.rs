@@ -163,7 +163,7 @@ fn show_terms(ts: &[(String, Q)]) -> String {
 }
 
 proptest! {
-    #![proptest_config(Config::with_cases(crate::cases(256)))]
+    #![proptest_config(crate::config(256))]
 
     #[test]
     fn normal_form_is_idempotent(e in expr()) {
@@ -294,7 +294,7 @@ proptest! {
 }
 
 proptest! {
-    #![proptest_config(Config::with_cases(crate::cases(2048)))]
+    #![proptest_config(crate::config(2048))]
 
     /// `(P)(Q)` equals its expansion; changing one coefficient, dropping one term or
     /// flipping one sign of the expansion makes it `not equal`.

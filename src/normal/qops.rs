@@ -1,0 +1,169 @@
+//! Rational arithmetic with a machine-word fast path.
+//!
+//! `num-rational` reduces every result with a big-integer gcd, which dominates the
+//! cost of polynomial work whose coefficients are small (the usual case). These
+//! functions compute in `i128` when every input fits in an `i64`, reduce with a
+//! binary gcd on machine words, and build the result without a second reduction;
+//! otherwise they fall back to `num-rational`. The result is the same canonical
+//! `BigRational` either way (lowest terms, positive denominator).
+
+use super::poly::Q;
+use num_bigint::BigInt;
+use num_traits::{ToPrimitive, Zero};
+
+/// `(numerator, denominator)` as `i64`s when both fit.
+fn small(q: &Q) -> Option<(i64, i64)> {
+    Some((q.numer().to_i64()?, q.denom().to_i64()?))
+}
+
+/// Binary gcd of two unsigned 128-bit integers.
+fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
+    if a == 0 {
+        return b;
+    }
+    if b == 0 {
+        return a;
+    }
+    let shift = (a | b).trailing_zeros();
+    a >>= a.trailing_zeros();
+    loop {
+        b >>= b.trailing_zeros();
+        if a > b {
+            std::mem::swap(&mut a, &mut b);
+        }
+        b -= a;
+        if b == 0 {
+            return a << shift;
+        }
+    }
+}
+
+/// Binary gcd of two unsigned 64-bit integers.
+fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
+    if a == 0 {
+        return b;
+    }
+    if b == 0 {
+        return a;
+    }
+    let shift = (a | b).trailing_zeros();
+    a >>= a.trailing_zeros();
+    loop {
+        b >>= b.trailing_zeros();
+        if a > b {
+            std::mem::swap(&mut a, &mut b);
+        }
+        b -= a;
+        if b == 0 {
+            return a << shift;
+        }
+    }
+}
+
+/// `n/d` in lowest terms from machine integers (`d ≠ 0`).
+fn make(n: i128, d: i128) -> Q {
+    if n == 0 {
+        return Q::zero();
+    }
+    let (un, ud) = (n.unsigned_abs(), d.unsigned_abs());
+    let g = match (u64::try_from(un), u64::try_from(ud)) {
+        (Ok(a), Ok(b)) => u128::from(gcd_u64(a, b)),
+        _ => gcd_u128(un, ud),
+    };
+    // g ≤ |d| ≤ i128::MAX, so the cast is lossless; |n|, |d| < 2^127 by construction.
+    let g = g as i128;
+    let (mut n, mut d) = (n / g, d / g);
+    if d < 0 {
+        n = -n;
+        d = -d;
+    }
+    Q::new_raw(BigInt::from(n), BigInt::from(d))
+}
+
+/// `a · b`.
+pub fn mul(a: &Q, b: &Q) -> Q {
+    match (small(a), small(b)) {
+        (Some((an, ad)), Some((bn, bd))) => {
+            // |an·bn|, |ad·bd| < 2^126.
+            make(
+                i128::from(an) * i128::from(bn),
+                i128::from(ad) * i128::from(bd),
+            )
+        }
+        _ => a * b,
+    }
+}
+
+/// `a + b`.
+pub fn add(a: &Q, b: &Q) -> Q {
+    match (small(a), small(b)) {
+        (Some((an, ad)), Some((bn, bd))) => {
+            if ad == bd {
+                return make(i128::from(an) + i128::from(bn), i128::from(ad));
+            }
+            // Each product is below 2^126 in magnitude, so the sum is below 2^127.
+            let n = i128::from(an) * i128::from(bd) + i128::from(bn) * i128::from(ad);
+            make(n, i128::from(ad) * i128::from(bd))
+        }
+        _ => a + b,
+    }
+}
+
+/// `a / b`, `b ≠ 0`.
+pub fn div(a: &Q, b: &Q) -> Q {
+    match (small(a), small(b)) {
+        (Some((an, ad)), Some((bn, bd))) if bn != 0 => make(
+            i128::from(an) * i128::from(bd),
+            i128::from(ad) * i128::from(bn),
+        ),
+        _ => a / b,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn q(n: i64, d: i64) -> Q {
+        Q::new(BigInt::from(n), BigInt::from(d))
+    }
+
+    fn any_q() -> impl Strategy<Value = Q> {
+        let part = prop_oneof![
+            -5i64..=5,
+            any::<i64>(),
+            Just(i64::MIN),
+            Just(i64::MAX),
+            Just(i64::MIN + 1)
+        ];
+        let den = prop_oneof![1i64..=6, any::<i64>(), Just(i64::MIN), Just(i64::MAX)];
+        (part, den.prop_filter("nonzero", |d| *d != 0))
+            .prop_map(|(n, d)| Q::new(BigInt::from(n), BigInt::from(d)))
+    }
+
+    #[test]
+    fn small_cases() {
+        assert_eq!(mul(&q(2, 3), &q(3, 4)), q(1, 2));
+        assert_eq!(add(&q(1, 6), &q(1, 3)), q(1, 2));
+        assert_eq!(add(&q(1, 2), &q(-1, 2)), q(0, 1));
+        assert_eq!(div(&q(1, 2), &q(-3, 4)), q(-2, 3));
+        assert_eq!(gcd_u128(0, 0), 0);
+        assert_eq!(gcd_u128(12, 18), 6);
+        assert_eq!(gcd_u64(0, 7), 7);
+        assert_eq!(gcd_u64(1 << 40, 3 << 38), 1 << 38);
+        assert_eq!(gcd_u128(1 << 100, 3 << 98), 1 << 98);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(2000))]
+        #[test]
+        fn agrees_with_num_rational(a in any_q(), b in any_q()) {
+            prop_assert_eq!(mul(&a, &b), &a * &b);
+            prop_assert_eq!(add(&a, &b), &a + &b);
+            if !b.is_zero() {
+                prop_assert_eq!(div(&a, &b), &a / &b);
+            }
+        }
+    }
+}
