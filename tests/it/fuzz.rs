@@ -7,7 +7,6 @@
 //! The fast set runs in `cargo test`; `cargo test -- --ignored` runs the long set.
 
 use proptest::prelude::*;
-use proptest::test_runner::Config;
 use rigor::check::{check_source, Justification, Options, Status};
 use rigor::decide::Evaluator;
 use rigor::interval::Interval;

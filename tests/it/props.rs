@@ -4,7 +4,6 @@
 
 use crate::normal::{norm, norm_in};
 use proptest::prelude::*;
-use proptest::test_runner::Config;
 use rigor::decide::{decide, Verdict};
 use rigor::lower::Env;
 use rigor::normal::print::plain;
