@@ -12,7 +12,7 @@ use super::poly::{Poly, Q};
 use super::Limit;
 use num_bigint::BigInt;
 use num_integer::Integer;
-use num_traits::{One, Zero};
+use num_traits::{One, ToPrimitive, Zero};
 use std::collections::btree_map::Entry;
 use std::collections::BTreeMap;
 
@@ -40,13 +40,13 @@ pub fn div_exact(a: &Poly, b: &Poly) -> Result<Option<Poly>, Limit> {
         let Some(m) = mr.div(&mb) else {
             return Ok(None);
         };
-        let c = &cr * &cb_inv;
+        let c = super::qops::mul(&cr, &cb_inv);
         for (mt, ct) in &rest {
             let key = mt.mul(&m).ok_or(Limit::Exponent)?;
-            let v = ct * &c;
+            let v = super::qops::mul(ct, &c);
             match r.entry(key) {
                 Entry::Occupied(mut e) => {
-                    *e.get_mut() -= v;
+                    *e.get_mut() = super::qops::sub(e.get(), &v);
                     if e.get().is_zero() {
                         e.remove();
                     }
@@ -131,7 +131,28 @@ fn invmod(a: u64) -> Option<u64> {
     (a != 0).then(|| powmod(a, P - 2))
 }
 
-fn q_mod_p(q: &Q) -> Option<u64> {
+/// `q mod P`; `inverses` remembers the inverses of small denominators already seen
+/// (a polynomial's coefficients share few denominators).
+fn q_mod_p(q: &Q, inverses: &mut Vec<(u64, u64)>) -> Option<u64> {
+    if let (Some(n), Some(d)) = (q.numer().to_i64(), q.denom().to_u64()) {
+        // Small numbers: one machine-word remainder, no big-integer allocation.
+        let r = n.unsigned_abs() % P;
+        let n = if n < 0 && r != 0 { P - r } else { r };
+        if d == 1 {
+            return Some(n);
+        }
+        let inv = match inverses.iter().find(|c| c.0 == d) {
+            Some(c) => c.1,
+            None => {
+                let inv = invmod(d % P)?;
+                if inverses.len() < 16 {
+                    inverses.push((d, inv));
+                }
+                inv
+            }
+        };
+        return Some(mulmod(n, inv));
+    }
     let pb = BigInt::from(P);
     let n = u64::try_from(q.numer().mod_floor(&pb)).ok()?;
     let d = u64::try_from(q.denom().mod_floor(&pb)).ok()?;
@@ -147,8 +168,9 @@ fn image_mod_p(p: &Poly, v: AtomId, value: &dyn Fn(AtomId) -> u64) -> Option<Vec
     }
     let mut out = vec![0u64; deg + 1];
     let mut cache: Vec<(AtomId, u64)> = Vec::new();
+    let mut inverses = Vec::new();
     for (m, q) in p.terms() {
-        let mut t = q_mod_p(q)?;
+        let mut t = q_mod_p(q, &mut inverses)?;
         let mut e = 0usize;
         for &(x, k) in m.pairs() {
             if x == v {

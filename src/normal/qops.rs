@@ -109,6 +109,17 @@ pub fn add(a: &Q, b: &Q) -> Q {
     }
 }
 
+/// `a − b`.
+pub fn sub(a: &Q, b: &Q) -> Q {
+    match (small(a), small(b)) {
+        (Some((an, ad)), Some((bn, bd))) => {
+            let n = i128::from(an) * i128::from(bd) - i128::from(bn) * i128::from(ad);
+            make(n, i128::from(ad) * i128::from(bd))
+        }
+        _ => a - b,
+    }
+}
+
 /// `a / b`, `b ≠ 0`.
 pub fn div(a: &Q, b: &Q) -> Q {
     match (small(a), small(b)) {
@@ -161,6 +172,7 @@ mod tests {
         fn agrees_with_num_rational(a in any_q(), b in any_q()) {
             prop_assert_eq!(mul(&a, &b), &a * &b);
             prop_assert_eq!(add(&a, &b), &a + &b);
+            prop_assert_eq!(sub(&a, &b), &a - &b);
             if !b.is_zero() {
                 prop_assert_eq!(div(&a, &b), &a / &b);
             }
