@@ -3,7 +3,7 @@
 //! roots of positive unknowns that appear only as `u^n`.
 
 use crate::normal::atom::{self, AtomId};
-use crate::normal::subst::{atom_depends_on, subst_atom};
+use crate::normal::subst::{atom_depends_on, depends_on, subst_atom};
 use crate::normal::{func, Assumptions, NormError, Poly, Rat, Sign};
 use std::time::Instant;
 
@@ -122,11 +122,20 @@ fn eliminate_with(
             break;
         }
         // Content order, not id order: the same file is checked the same way in every run.
+        // An unknown inside another atom (`sqrt(I_O/m)`) counts: substituting its value
+        // rebuilds that atom.
         let mut unknowns: Vec<AtomId> = target
             .atoms()
             .into_iter()
             .filter(|a| is_unknown(*a))
             .collect();
+        for f in &facts {
+            for a in f.value.atoms() {
+                if is_unknown(a) && !unknowns.contains(&a) && depends_on(&target, a) {
+                    unknowns.push(a);
+                }
+            }
+        }
         unknowns.sort_by(|a, b| atom::cmp_atoms(*a, *b));
         if unknowns.is_empty() {
             break;
@@ -188,12 +197,10 @@ fn eliminate_with(
             divisor: sol.divisor,
         });
     }
-    let mut stuck: Vec<AtomId> = target
-        .atoms()
-        .into_iter()
-        .filter(|a| is_unknown(*a))
-        .collect();
+    let mut stuck = Vec::new();
+    unknowns_within(&target, is_unknown, &mut stuck);
     stuck.sort_by(|a, b| atom::cmp_atoms(*a, *b));
+    stuck.dedup();
     Ok(Elimination {
         target,
         steps,
@@ -202,6 +209,33 @@ fn eliminate_with(
         timed_out,
         multiple_of: None,
     })
+}
+
+/// The unknowns in `r`, also inside the arguments of other atoms (`sqrt(I_O/m)`).
+fn unknowns_within(r: &Rat, is_unknown: &dyn Fn(AtomId) -> bool, out: &mut Vec<AtomId>) {
+    use crate::normal::Atom;
+    let poly = |p: &Poly, out: &mut Vec<AtomId>| {
+        if let Ok(r) = Rat::poly(p.clone()) {
+            unknowns_within(&r, is_unknown, out);
+        }
+    };
+    for a in r.atoms() {
+        if is_unknown(a) {
+            out.push(a);
+            continue;
+        }
+        match &*atom::get(a) {
+            Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => {}
+            Atom::Sqrt(p) | Atom::Root(p, _) | Atom::Abs(p) => poly(p, out),
+            Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) => {
+                unknowns_within(u, is_unknown, out)
+            }
+            Atom::Pow(b, e) => {
+                unknowns_within(b, is_unknown, out);
+                unknowns_within(e, is_unknown, out);
+            }
+        }
+    }
 }
 
 struct Solution {

@@ -105,7 +105,7 @@ fn link<'a>(
 /// `justification`: the rest of the line after `by` (up to a comment), as labels
 /// `[a], [b] and [c]` when it is exactly that, else as text. In a claim, a whole word
 /// `where` ends the text unless the next line starts another link or the `where` clause.
-fn by_clause<'a>(
+pub(crate) fn by_clause<'a>(
     cx: &Cx<'a>,
     by_at: &'a str,
     after_by: &'a str,

@@ -2,7 +2,9 @@
 //! statement's region (its first line and continuation lines) with absolute spans.
 
 use super::ast::{BodyDef, Chain, Label, Name, Range, SignDecl, Stmt, StmtKind, UnitDecl};
-use super::chain::{assignments, chain_or_expr, label, label_list, name, ChainRules};
+use super::chain::{
+    assignments, by_clause, chain_or_expr, label, label_list, name, ChainRules,
+};
 use super::error::{failure, PResult, SyntaxError};
 use super::expr::expr;
 use super::lex::{end, expected, hspace, ident, keyword, number, punct, token_len, ws, Cx};
@@ -323,6 +325,29 @@ fn fact<'a>(cx: &Cx<'a>, i: &'a str, kw: &'a str) -> PResult<'a, StmtKind> {
     let (i, where_) = match keyword(cx, i, "where") {
         Some((_, rest)) => assignments(cx, rest, "where")?,
         None => (i, Vec::new()),
+    };
+    let mut chain = chain;
+    // `… where I_G = m R^2/2 by [acc]`: both clauses are "at the end of a claim", so
+    // the justification may also follow the substitutions; it belongs to the last link.
+    let i = match keyword(cx, i, "by").filter(|_| !where_.is_empty()) {
+        Some((by_at, after_by)) => {
+            let Some(last) = chain.links.last_mut() else {
+                return expected(cx, i, "the end of the statement");
+            };
+            if last.by.is_some() {
+                let message = "this link already has a justification (`by`) before `where`";
+                return failure(by_at, 2, message);
+            }
+            let rules = ChainRules {
+                after: "where",
+                by: true,
+                where_: false,
+            };
+            let (rest, (by, by_span)) = by_clause(cx, by_at, after_by, rules)?;
+            last.by = Some((by, by_span));
+            rest
+        }
+        None => i,
     };
     let wanted = if where_.is_empty() {
         "an operator, a relation, `by`, `where` or the end of the statement"
