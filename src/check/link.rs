@@ -1111,25 +1111,47 @@ impl<'l, 'o> Checker<'l, 'o> {
         }
         if let Some(e) = elim {
             if !e.stuck.is_empty() {
+                let facts: Vec<Fact> = self.facts.iter().map(|k| k.fact.clone()).collect();
+                let mut headline = format!(
+                    "not verified: nothing in scope determines {}",
+                    names(&e.stuck)
+                );
+                let mut powers = Vec::new();
+                for u in &e.stuck {
+                    if let Some((fact, n)) = super::solve::power_only(&facts, *u, &self.env.signs) {
+                        let name = super::solve::unknown_name(*u);
+                        headline =
+                            format!("not verified: {fact} gives {name} only through {name}^{n}");
+                        powers.push(format!(
+                            "rigor takes the principal root only of an unknown declared positive: `symbols {name} > 0` before `unknowns {name}`"
+                        ));
+                    }
+                }
                 let mut d = Diagnostic::error(
                     "E0302",
-                    format!(
-                        "not verified: nothing in scope determines {}",
-                        names(&e.stuck)
-                    ),
+                    headline,
                     span,
-                    "a fact may be missing",
+                    if powers.is_empty() {
+                        "a fact may be missing"
+                    } else {
+                        "which root is meant?"
+                    },
                 );
                 notes.push(format!(
                     "after eliminating what the facts give, left − right = {}",
                     plain(&e.target)
                 ));
-                notes.push(format!(
-                    "a fact about {} was needed but never given (or `by [..]` left it out)",
-                    names(&e.stuck)
-                ));
+                let root_missing = !powers.is_empty();
+                if root_missing {
+                    notes.extend(powers);
+                } else {
+                    notes.push(format!(
+                        "a fact about {} was needed but never given (or `by [..]` left it out)",
+                        names(&e.stuck)
+                    ));
+                }
                 if let Some(hint) = crate::decide::diagnose(ra, rb, &e.target)
-                    .filter(|h| !h.starts_with("the two sides differ by"))
+                    .filter(|h| !root_missing && !h.starts_with("the two sides differ by"))
                 {
                     notes.push(format!("if {} can take any value, {hint}", names(&e.stuck)));
                 }

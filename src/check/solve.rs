@@ -211,6 +211,24 @@ fn eliminate_with(
     })
 }
 
+/// A fact that gives `u` only through `u^n` (n ≥ 2) while `u` is not declared positive
+/// or nonnegative, so that no principal root could be taken: its name and `n`.
+pub fn power_only(facts: &[Fact], u: AtomId, signs: &Assumptions) -> Option<(String, u32)> {
+    if matches!(signs.declared(u), Sign::Pos | Sign::NonNeg) {
+        return None;
+    }
+    facts.iter().find_map(|f| {
+        let n = f.value.num();
+        if !n.contains(u) || f.value.den().contains(u) {
+            return None;
+        }
+        match n.coeffs_in(u).as_slice() {
+            [(0, _), (e, c)] | [(e, c)] if *e >= 2 && !c.contains(u) => Some((f.name.clone(), *e)),
+            _ => None,
+        }
+    })
+}
+
 /// The unknowns in `r`, also inside the arguments of other atoms (`sqrt(I_O/m)`).
 fn unknowns_within(r: &Rat, is_unknown: &dyn Fn(AtomId) -> bool, out: &mut Vec<AtomId>) {
     use crate::normal::Atom;

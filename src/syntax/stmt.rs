@@ -2,9 +2,7 @@
 //! statement's region (its first line and continuation lines) with absolute spans.
 
 use super::ast::{BodyDef, Chain, Label, Name, Range, SignDecl, Stmt, StmtKind, UnitDecl};
-use super::chain::{
-    assignments, by_clause, chain_or_expr, label, label_list, name, ChainRules,
-};
+use super::chain::{assignments, by_clause, chain_or_expr, label, label_list, name, ChainRules};
 use super::error::{failure, PResult, SyntaxError};
 use super::expr::expr;
 use super::lex::{end, expected, hspace, ident, keyword, number, punct, token_len, ws, Cx};
