@@ -216,6 +216,13 @@ fn square_roots() {
     check("sqrt(x^2)", "x < 0", "-x");
     check("sqrt(R^2)", "R > 0", "R");
     same("sqrt(12 x^2)", "2 sqrt(3) abs(x)", "");
+    // Nested radicals that denest exactly.
+    check("sqrt(3 + 2 sqrt(2))", "", "sqrt(2) + 1");
+    check("sqrt(3 - 2 sqrt(2))", "", "sqrt(2) - 1");
+    same("sqrt(5 + 2 sqrt(6))", "sqrt(2) + sqrt(3)", "");
+    same("sqrt(2 + sqrt(3))", "(sqrt(6) + sqrt(2))/2", "");
+    // … and ones that do not (a² − b²c is not a square) stay one atom.
+    check("sqrt(1 + sqrt(2))", "", "sqrt(sqrt(2) + 1)");
     same("sqrt(12 x^2)", "2 sqrt(3) x", "x >= 0");
     // Without a sign the abs stays; with R > 0 it goes.
     same("sqrt(R^2/2)", "abs(R)/sqrt(2)", "");
