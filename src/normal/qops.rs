@@ -60,10 +60,37 @@ fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
     }
 }
 
+/// `n` as a big integer (through `i64` when it fits: that conversion is cheaper).
+fn big(n: i128) -> BigInt {
+    match i64::try_from(n) {
+        Ok(n) => BigInt::from(n),
+        Err(_) => BigInt::from(n),
+    }
+}
+
+/// The integer `n`.
+fn int(n: i128) -> Q {
+    Q::from_integer(big(n))
+}
+
 /// `n/d` in lowest terms from machine integers (`d ≠ 0`).
 fn make(n: i128, d: i128) -> Q {
     if n == 0 {
         return Q::zero();
+    }
+    if d == 1 {
+        return int(n);
+    }
+    if let (Ok(n64), Ok(d64)) = (i64::try_from(n), i64::try_from(d)) {
+        // Word-sized gcd; the 128-bit division only when there is a common factor.
+        let g = gcd_u64(n64.unsigned_abs(), d64.unsigned_abs());
+        let (n, d) = if g == 1 {
+            (n, d)
+        } else {
+            (n / i128::from(g), d / i128::from(g))
+        };
+        let (n, d) = if d < 0 { (-n, -d) } else { (n, d) };
+        return Q::new_raw(big(n), big(d));
     }
     let (un, ud) = (n.unsigned_abs(), d.unsigned_abs());
     let g = match (u64::try_from(un), u64::try_from(ud)) {
@@ -77,12 +104,13 @@ fn make(n: i128, d: i128) -> Q {
         n = -n;
         d = -d;
     }
-    Q::new_raw(BigInt::from(n), BigInt::from(d))
+    Q::new_raw(big(n), big(d))
 }
 
 /// `a · b`.
 pub fn mul(a: &Q, b: &Q) -> Q {
     match (small(a), small(b)) {
+        (Some((an, 1)), Some((bn, 1))) => int(i128::from(an) * i128::from(bn)),
         (Some((an, ad)), Some((bn, bd))) => {
             // |an·bn|, |ad·bd| < 2^126.
             make(
@@ -97,6 +125,7 @@ pub fn mul(a: &Q, b: &Q) -> Q {
 /// `a + b`.
 pub fn add(a: &Q, b: &Q) -> Q {
     match (small(a), small(b)) {
+        (Some((an, 1)), Some((bn, 1))) => int(i128::from(an) + i128::from(bn)),
         (Some((an, ad)), Some((bn, bd))) => {
             if ad == bd {
                 return make(i128::from(an) + i128::from(bn), i128::from(ad));
