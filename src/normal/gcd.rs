@@ -21,6 +21,9 @@ pub fn div_exact(a: &Poly, b: &Poly) -> Result<Option<Poly>, Limit> {
     if b.is_zero() {
         return Ok(None);
     }
+    if a.is_zero() {
+        return Ok(Some(Poly::zero()));
+    }
     if let Some(c) = b.as_constant() {
         return Ok(Some(a.scale(&c.recip())));
     }
@@ -32,6 +35,11 @@ pub fn div_exact(a: &Poly, b: &Poly) -> Result<Option<Poly>, Limit> {
         return Ok(None);
     };
     let cb_inv = cb.recip();
+    if let Some(pk) = super::pack::Packing::for_quotient(a, b) {
+        if let Some(r) = div_exact_packed(a, b, &pk, &cb_inv)? {
+            return Ok(r);
+        }
+    }
     // The remainder as an ordered map: each quotient term costs |b| updates, not |a|.
     let mut r: BTreeMap<Mono, Q> = a.terms().iter().cloned().collect();
     let rest: Vec<(Mono, Q)> = b.terms()[..b.len() - 1].to_vec();
@@ -65,6 +73,82 @@ pub fn div_exact(a: &Poly, b: &Poly) -> Result<Option<Poly>, Limit> {
         }
     }
     Ok(Some(Poly::from_terms(q_terms)))
+}
+
+/// [`div_exact`] on packed monomials; `Ok(None)` when some monomial does not pack
+/// (the caller then takes the general path), `Ok(Some(None))` when `b ∤ a`.
+fn div_exact_packed(
+    a: &Poly,
+    b: &Poly,
+    pk: &super::pack::Packing,
+    cb_inv: &Q,
+) -> Result<Option<Option<Poly>>, Limit> {
+    // An exact quotient has degree deg_v(a) − deg_v(b) in every atom v: a larger
+    // quotient exponent proves b ∤ a, and keeps every packed sum within its field.
+    let mut limit = Vec::new();
+    for v in a.atoms() {
+        let (da, db) = (a.degree_in(v), b.degree_in(v));
+        if db > da {
+            return Ok(Some(None));
+        }
+        if da > db {
+            limit.push((v, da - db));
+        }
+    }
+    if b.atoms().iter().any(|v| !a.contains(*v)) {
+        return Ok(Some(None));
+    }
+    let Some(limit) = Mono::from_pairs(limit).and_then(|m| pk.pack(&m)) else {
+        return Ok(None);
+    };
+    let packed = |p: &Poly| -> Option<Vec<(u128, Q)>> {
+        p.terms()
+            .iter()
+            .map(|(m, q)| Some((pk.pack(m)?, q.clone())))
+            .collect()
+    };
+    let (Some(pa), Some(mut pb)) = (packed(a), packed(b)) else {
+        return Ok(None);
+    };
+    let Some((mb, _)) = pb.pop() else {
+        return Ok(Some(None));
+    };
+    let mut r: BTreeMap<u128, Q> = pa.into_iter().collect();
+    let mut q_terms: Vec<(u128, Q)> = Vec::new();
+    while let Some((mr, cr)) = r.pop_last() {
+        let Some(m) = pk.div(mr, mb, limit) else {
+            return Ok(Some(None));
+        };
+        let c = super::qops::mul(&cr, cb_inv);
+        for (mt, ct) in &pb {
+            let v = super::qops::mul(ct, &c);
+            match r.entry(mt + m) {
+                Entry::Occupied(mut e) => {
+                    *e.get_mut() = super::qops::sub(e.get(), &v);
+                    if e.get().is_zero() {
+                        e.remove();
+                    }
+                }
+                Entry::Vacant(e) => {
+                    e.insert(-v);
+                }
+            }
+        }
+        q_terms.push((m, c));
+        if q_terms.len() > super::poly::max_terms() {
+            return Err(Limit::Terms);
+        }
+        if q_terms.len() % 256 == 0 {
+            super::poly::check_deadline()?;
+        }
+    }
+    // Quotient terms come out in strictly descending order.
+    let terms = q_terms
+        .into_iter()
+        .rev()
+        .map(|(m, c)| (pk.unpack(m), c))
+        .collect();
+    Ok(Some(Some(Poly::from_sorted_terms(terms))))
 }
 
 /// Proves `gcd(a, b)` constant by evaluation, when it is: for every atom `v` in both,
@@ -351,7 +435,41 @@ fn prem(a: &Poly, b: &Poly, v: AtomId) -> Result<Poly, Limit> {
 
 #[cfg(test)]
 mod tests {
-    use super::{mulmod, P};
+    use super::{div_exact, mulmod, P};
+    use crate::normal::mono::Mono;
+    use crate::normal::poly::{Poly, Q};
+    use num_bigint::BigInt;
+    use proptest::prelude::*;
+
+    fn poly() -> impl Strategy<Value = Poly> {
+        let term = (
+            proptest::collection::vec((0u32..4, 1u32..4), 0..3),
+            -3i64..=3,
+        );
+        proptest::collection::vec(term, 1..5).prop_map(|ts| {
+            Poly::from_terms(
+                ts.into_iter()
+                    .filter_map(|(m, c)| {
+                        Some((Mono::from_pairs(m)?, Q::from_integer(BigInt::from(c))))
+                    })
+                    .collect(),
+            )
+        })
+    }
+
+    proptest! {
+        #[test]
+        fn exact_division_recovers_the_factor(a in poly(), b in poly(), r in poly()) {
+            prop_assume!(!b.is_zero());
+            let ab = a.mul(&b).unwrap_or_else(|_| Poly::zero());
+            prop_assert_eq!(div_exact(&ab, &b), Ok(Some(a.clone())));
+            // With a remainder the division is not exact, unless b divides it.
+            let abr = ab.add(&r);
+            if let Ok(Some(q)) = div_exact(&abr, &b) {
+                prop_assert_eq!(q.mul(&b).unwrap_or_else(|_| Poly::zero()), abr);
+            }
+        }
+    }
 
     #[test]
     fn mersenne_reduction_matches_division() {

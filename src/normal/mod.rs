@@ -7,6 +7,7 @@ pub mod atom;
 pub mod func;
 pub mod gcd;
 pub mod mono;
+pub mod pack;
 pub mod poly;
 pub mod print;
 pub mod qops;

@@ -42,6 +42,13 @@ impl Mono {
         Some(Mono(out))
     }
 
+    /// A monomial from pairs already sorted by atom id, distinct, exponents ≥ 1.
+    pub(crate) fn from_sorted_pairs(pairs: Vec<(AtomId, u32)>) -> Mono {
+        debug_assert!(pairs.windows(2).all(|w| w[0].0 < w[1].0));
+        debug_assert!(pairs.iter().all(|p| p.1 > 0));
+        Mono(pairs)
+    }
+
     /// The pairs, sorted by atom id.
     pub fn pairs(&self) -> &[(AtomId, u32)] {
         &self.0

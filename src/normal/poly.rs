@@ -129,6 +129,13 @@ impl Poly {
         Poly { terms: out }
     }
 
+    /// A polynomial from terms already strictly ascending with nonzero coefficients.
+    pub(crate) fn from_sorted_terms(terms: Vec<(Mono, Q)>) -> Poly {
+        debug_assert!(terms.windows(2).all(|w| w[0].0 < w[1].0));
+        debug_assert!(terms.iter().all(|t| !t.1.is_zero()));
+        Poly { terms }
+    }
+
     /// The terms, ascending.
     pub fn terms(&self) -> &[(Mono, Q)] {
         &self.terms
@@ -324,6 +331,11 @@ impl Poly {
         let bits = |v: &[(&Mono, BigInt)]| v.iter().map(|t| t.1.bits()).max().unwrap_or(0);
         let fits =
             bits(&ia) + bits(&ib) + (usize::BITS - small.len().leading_zeros()) as u64 + 2 < 126;
+        if fits {
+            if let Some(out) = mul_packed(&ia, &ib, &scale, small, big)? {
+                return Ok(out);
+            }
+        }
         let mut terms: Vec<(Mono, Q)> = if fits {
             let ib: Vec<(&Mono, i128)> = ib.iter().map(|t| (t.0, i128_of(&t.1))).collect();
             let mut acc: HashMap<Mono, i128, FxBuild> = HashMap::with_capacity_and_hasher(
@@ -578,6 +590,49 @@ fn integer_form(p: &Poly) -> (Q, Vec<(&Mono, BigInt)>) {
     (Q::new(BigInt::one(), l), ints)
 }
 
+/// The product of two integer forms (coefficients that fit in `i128` with room for
+/// the sums) on packed monomials; `None` when the monomials do not pack.
+fn mul_packed(
+    ia: &[(&Mono, BigInt)],
+    ib: &[(&Mono, BigInt)],
+    scale: &Q,
+    a: &Poly,
+    b: &Poly,
+) -> Result<Option<Poly>, Limit> {
+    let Some(pk) = super::pack::Packing::for_product(a, b) else {
+        return Ok(None);
+    };
+    let packed = |v: &[(&Mono, BigInt)]| -> Option<Vec<(u128, i128)>> {
+        v.iter()
+            .map(|(m, c)| Some((pk.pack(m)?, i128_of(c))))
+            .collect()
+    };
+    let (Some(pa), Some(pb)) = (packed(ia), packed(ib)) else {
+        return Ok(None);
+    };
+    let mut acc: HashMap<u128, i128, FxBuild> =
+        HashMap::with_capacity_and_hasher(pa.len().saturating_mul(pb.len()).min(1 << 16), FxBuild);
+    for (x, c1) in &pa {
+        for (y, c2) in &pb {
+            // The fields are wide enough for the sum of the degrees: no carry.
+            *acc.entry(x + y).or_insert(0) += c1 * c2;
+        }
+        if acc.len() > max_terms() {
+            return Err(Limit::Terms);
+        }
+        check_deadline()?;
+    }
+    let mut v: Vec<(u128, i128)> = acc.into_iter().filter(|t| t.1 != 0).collect();
+    // The integer order of packed monomials is the monomial order.
+    v.sort_unstable_by_key(|t| t.0);
+    Ok(Some(Poly {
+        terms: v
+            .into_iter()
+            .map(|(k, c)| (pk.unpack(k), scale_int(c, scale)))
+            .collect(),
+    }))
+}
+
 /// `c · scale` for an integer `c`.
 fn scale_int(c: i128, scale: &Q) -> Q {
     if scale.is_one() {
@@ -620,6 +675,10 @@ impl std::hash::Hasher for Fx {
     }
     fn write_usize(&mut self, n: usize) {
         self.write_u64(n as u64);
+    }
+    fn write_u128(&mut self, n: u128) {
+        self.write_u64(n as u64);
+        self.write_u64((n >> 64) as u64);
     }
     fn write_u64(&mut self, n: u64) {
         self.0 = (self.0.rotate_left(5) ^ n).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);

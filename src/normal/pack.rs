@@ -1,0 +1,194 @@
+//! Packed exponent vectors for the inner loops of multiplication and exact division.
+//!
+//! A [`Packing`] gives each atom of the operands a bit field of a `u128`, lowest atom
+//! id in the lowest bits, each field wide enough for the largest exponent the
+//! operation can produce. Multiplying monomials is then one integer addition, and
+//! comparing them one integer comparison: with the highest atom id most significant,
+//! the integer order is exactly [`Mono`]'s lexicographic order. When the fields do not
+//! fit in 128 bits the callers keep to the general [`Mono`] path.
+
+use super::atom::AtomId;
+use super::mono::Mono;
+use super::poly::Poly;
+
+/// The bit fields of a set of atoms.
+pub struct Packing {
+    /// `(atom, shift, width)`, ascending by atom id.
+    fields: Vec<(AtomId, u32, u32)>,
+}
+
+impl Packing {
+    /// A packing whose field for atom `a` holds exponents up to `max(a)`, for the atoms
+    /// listed (ascending, distinct); `None` when the fields need more than 128 bits.
+    pub fn new(atoms: &[(AtomId, u64)]) -> Option<Packing> {
+        let mut fields = Vec::with_capacity(atoms.len());
+        let mut shift = 0u32;
+        for &(a, max) in atoms {
+            let width = (u64::BITS - max.leading_zeros()).max(1);
+            fields.push((a, shift, width));
+            shift = shift.checked_add(width)?;
+        }
+        (shift <= 128).then_some(Packing { fields })
+    }
+
+    /// A packing for the product of `a` and `b`: each field holds the sum of the two
+    /// degrees.
+    pub fn for_product(a: &Poly, b: &Poly) -> Option<Packing> {
+        Packing::new(&merge_degrees(&degrees(a), &degrees(b), |x, y| x + y))
+    }
+
+    /// A packing for dividing `a` by `b`: each field holds the larger of the two degrees
+    /// (an exact quotient never needs more, see [`super::gcd::div_exact`]).
+    pub fn for_quotient(a: &Poly, b: &Poly) -> Option<Packing> {
+        Packing::new(&merge_degrees(&degrees(a), &degrees(b), u64::max))
+    }
+
+    /// The packed form of `m`, `None` if an atom has no field or its exponent does
+    /// not fit.
+    pub fn pack(&self, m: &Mono) -> Option<u128> {
+        let mut out = 0u128;
+        let mut i = 0;
+        for &(a, e) in m.pairs() {
+            while self.fields.get(i)?.0 < a {
+                i += 1;
+            }
+            let &(b, shift, width) = self.fields.get(i)?;
+            if b != a || (width < 32 && e >> width != 0) {
+                return None;
+            }
+            out |= u128::from(e) << shift;
+        }
+        Some(out)
+    }
+
+    /// The monomial of a packed value.
+    pub fn unpack(&self, mut v: u128) -> Mono {
+        let mut pairs = Vec::new();
+        for &(a, _, width) in &self.fields {
+            let mask = (1u128 << width) - 1;
+            let e = (v & mask) as u32;
+            if e != 0 {
+                pairs.push((a, e));
+            }
+            v >>= width;
+        }
+        Mono::from_sorted_pairs(pairs)
+    }
+
+    /// `a / b` when `b` divides `a` and every exponent of the quotient is at most the
+    /// matching one of `limit`.
+    pub fn div(&self, a: u128, b: u128, limit: u128) -> Option<u128> {
+        let mut q = 0u128;
+        for &(_, shift, width) in &self.fields {
+            let mask = ((1u128 << width) - 1) << shift;
+            let (x, y, l) = (a & mask, b & mask, limit & mask);
+            if y > x || x - y > l {
+                return None;
+            }
+            q |= x - y;
+        }
+        Some(q)
+    }
+}
+
+/// The largest exponent of every atom of `p`, ascending by atom id.
+fn degrees(p: &Poly) -> Vec<(AtomId, u64)> {
+    let mut out: Vec<(AtomId, u64)> = Vec::new();
+    for (m, _) in p.terms() {
+        for &(a, e) in m.pairs() {
+            match out.binary_search_by_key(&a, |t| t.0) {
+                Ok(i) => {
+                    if let Some(t) = out.get_mut(i) {
+                        t.1 = t.1.max(u64::from(e));
+                    }
+                }
+                Err(i) => out.insert(i, (a, u64::from(e))),
+            }
+        }
+    }
+    out
+}
+
+/// The union of two degree lists, combining the degrees of shared atoms with `f`.
+fn merge_degrees(
+    a: &[(AtomId, u64)],
+    b: &[(AtomId, u64)],
+    f: impl Fn(u64, u64) -> u64,
+) -> Vec<(AtomId, u64)> {
+    let mut out = Vec::with_capacity(a.len() + b.len());
+    let (mut i, mut j) = (0, 0);
+    while i < a.len() || j < b.len() {
+        match (a.get(i), b.get(j)) {
+            (Some(x), Some(y)) if x.0 == y.0 => {
+                out.push((x.0, f(x.1, y.1)));
+                i += 1;
+                j += 1;
+            }
+            (Some(x), Some(y)) if x.0 < y.0 => {
+                out.push((x.0, f(x.1, 0)));
+                i += 1;
+            }
+            (Some(x), None) => {
+                out.push((x.0, f(x.1, 0)));
+                i += 1;
+            }
+            (_, Some(y)) => {
+                out.push((y.0, f(0, y.1)));
+                j += 1;
+            }
+            (None, None) => break,
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_traits::One;
+    use proptest::prelude::*;
+
+    fn mono(pairs: &[(AtomId, u32)]) -> Mono {
+        Mono::from_pairs(pairs.to_vec()).unwrap_or_else(Mono::one)
+    }
+
+    fn any_mono() -> impl Strategy<Value = Mono> {
+        proptest::collection::vec((0u32..6, 0u32..9), 0..5).prop_map(|v| mono(&v))
+    }
+
+    #[test]
+    fn too_wide_is_refused() {
+        let atoms: Vec<(AtomId, u64)> = (0..70).map(|a| (a, 3)).collect();
+        assert!(Packing::new(&atoms).is_none());
+        assert!(Packing::new(&atoms[..64]).is_some());
+    }
+
+    #[test]
+    fn exponents_that_do_not_fit_are_refused() {
+        let p = Packing::new(&[(1, 3), (4, 1)]).unwrap_or_else(|| unreachable!());
+        assert!(p.pack(&mono(&[(1, 3), (4, 1)])).is_some());
+        assert!(p.pack(&mono(&[(1, 4)])).is_none());
+        assert!(p.pack(&mono(&[(2, 1)])).is_none());
+        assert!(p.pack(&mono(&[(9, 1)])).is_none());
+    }
+
+    proptest! {
+        #[test]
+        fn packing_keeps_products_order_and_quotients(a in any_mono(), b in any_mono()) {
+            let pa = Poly::term(a.clone(), super::super::poly::Q::one());
+            let pb = Poly::term(b.clone(), super::super::poly::Q::one());
+            let Some(p) = Packing::for_product(&pa, &pb) else {
+                return Ok(());
+            };
+            let (Some(x), Some(y)) = (p.pack(&a), p.pack(&b)) else {
+                return Err(TestCaseError::fail("operands must pack"));
+            };
+            prop_assert_eq!(p.unpack(x), a.clone());
+            let ab = a.mul(&b).unwrap_or_else(Mono::one);
+            prop_assert_eq!(p.unpack(x + y), ab.clone());
+            prop_assert_eq!(x.cmp(&y), a.cmp(&b));
+            prop_assert_eq!(p.div(x + y, y, u128::MAX).map(|q| p.unpack(q)), Some(a.clone()));
+            prop_assert_eq!(p.div(x, y, u128::MAX).map(|q| p.unpack(q)), a.div(&b));
+        }
+    }
+}
