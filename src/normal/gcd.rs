@@ -158,30 +158,43 @@ fn div_exact_packed(
 /// only ever proves coprimality; `false` means "not shown", and the exact gcd runs.
 fn coprime_by_evaluation(a: &Poly, b: &Poly) -> bool {
     let aa = a.atoms();
-    let common: Vec<AtomId> = b
+    let mut pending: Vec<AtomId> = b
         .atoms()
         .into_iter()
         .filter(|v| aa.binary_search(v).is_ok())
         .collect();
-    'vars: for &v in &common {
-        for attempt in 0..3u64 {
-            let value = |x: AtomId| -> u64 {
-                let h = (u64::from(x) + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15)
-                    ^ attempt.wrapping_mul(0xD6E8_FEB8_6659_FD93);
-                h % (P - 2) + 2
-            };
-            let (Some(ua), Some(ub)) = (image_mod_p(a, v, &value), image_mod_p(b, v, &value))
-            else {
+    for attempt in 0..3u64 {
+        if pending.is_empty() {
+            return true;
+        }
+        let value = |x: AtomId| -> u64 {
+            let h = (u64::from(x) + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+                ^ attempt.wrapping_mul(0xD6E8_FEB8_6659_FD93);
+            h % (P - 2) + 2
+        };
+        // Every atom gets its value once; the image in v divides v's own factor back out.
+        let (Some(wa), Some(wb)) = (weights(a, &value), weights(b, &value)) else {
+            continue;
+        };
+        let mut unsettled = Vec::new();
+        for v in pending {
+            let Some(inv) = invmod(value(v)) else {
+                unsettled.push(v);
                 continue;
             };
-            if gcd_degree_mod_p(ua, ub) == 0 {
-                continue 'vars;
+            match (image_mod_p(a, &wa, v, inv), image_mod_p(b, &wb, v, inv)) {
+                (Some(ua), Some(ub)) => {
+                    if gcd_degree_mod_p(ua, ub) != 0 {
+                        return false;
+                    }
+                }
+                // A leading coefficient vanished at this point: try another.
+                _ => unsettled.push(v),
             }
-            return false;
         }
-        return false;
+        pending = unsettled;
     }
-    true
+    pending.is_empty()
 }
 
 /// The Mersenne prime 2⁶¹ − 1.
@@ -245,34 +258,47 @@ fn q_mod_p(q: &Q, inverses: &mut Vec<(u64, u64)>) -> Option<u64> {
 
 /// The image of `p` in 𝔽ₚ[v] with every other atom set by `value`, if its degree in `v`
 /// is kept.
-fn image_mod_p(p: &Poly, v: AtomId, value: &dyn Fn(AtomId) -> u64) -> Option<Vec<u64>> {
+/// The value of every term of `p` modulo P with every atom set by `value`.
+fn weights(p: &Poly, value: &dyn Fn(AtomId) -> u64) -> Option<Vec<u64>> {
+    let mut cache: Vec<(AtomId, u64)> = Vec::new();
+    let mut inverses = Vec::new();
+    let mut out = Vec::with_capacity(p.len());
+    for (m, q) in p.terms() {
+        let mut t = q_mod_p(q, &mut inverses)?;
+        for &(x, k) in m.pairs() {
+            let base = match cache.iter().find(|c| c.0 == x) {
+                Some(c) => c.1,
+                None => {
+                    let val = value(x);
+                    cache.push((x, val));
+                    val
+                }
+            };
+            t = mulmod(t, powmod(base, u64::from(k)));
+        }
+        out.push(t);
+    }
+    Some(out)
+}
+
+/// The image of `p` in 𝔽ₚ[v] from its term values `w` (`inv` is the inverse of the
+/// value of `v`, whose powers are divided back out), if its degree in `v` is kept.
+fn image_mod_p(p: &Poly, w: &[u64], v: AtomId, inv: u64) -> Option<Vec<u64>> {
     let deg = p.degree_in(v) as usize;
     if deg > 100_000 {
         return None;
     }
+    let mut inv_pow = Vec::with_capacity(deg + 1);
+    let mut x = 1u64;
+    for _ in 0..=deg {
+        inv_pow.push(x);
+        x = mulmod(x, inv);
+    }
     let mut out = vec![0u64; deg + 1];
-    let mut cache: Vec<(AtomId, u64)> = Vec::new();
-    let mut inverses = Vec::new();
-    for (m, q) in p.terms() {
-        let mut t = q_mod_p(q, &mut inverses)?;
-        let mut e = 0usize;
-        for &(x, k) in m.pairs() {
-            if x == v {
-                e = k as usize;
-            } else {
-                let base = match cache.iter().find(|c| c.0 == x) {
-                    Some(c) => c.1,
-                    None => {
-                        let val = value(x);
-                        cache.push((x, val));
-                        val
-                    }
-                };
-                t = mulmod(t, powmod(base, u64::from(k)));
-            }
-        }
+    for ((m, _), t) in p.terms().iter().zip(w) {
+        let e = m.exp(v) as usize;
         let slot = out.get_mut(e)?;
-        *slot = (*slot + t) % P;
+        *slot = (*slot + mulmod(*t, *inv_pow.get(e)?)) % P;
     }
     (*out.last()? != 0).then_some(out)
 }
