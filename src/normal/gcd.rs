@@ -85,17 +85,27 @@ fn div_exact_packed(
 ) -> Result<Option<Option<Poly>>, Limit> {
     // An exact quotient has degree deg_v(a) − deg_v(b) in every atom v: a larger
     // quotient exponent proves b ∤ a, and keeps every packed sum within its field.
+    let (da, db) = (super::pack::degrees(a), super::pack::degrees(b));
     let mut limit = Vec::new();
-    for v in a.atoms() {
-        let (da, db) = (a.degree_in(v), b.degree_in(v));
-        if db > da {
+    let mut j = 0;
+    for &(v, ea) in &da {
+        let eb = match db.get(j) {
+            Some(&(w, _)) if w < v => return Ok(Some(None)),
+            Some(&(w, e)) if w == v => {
+                j += 1;
+                e
+            }
+            _ => 0,
+        };
+        if eb > ea {
             return Ok(Some(None));
         }
-        if da > db {
-            limit.push((v, da - db));
+        if ea > eb {
+            limit.push((v, u32::try_from(ea - eb).unwrap_or(u32::MAX)));
         }
     }
-    if b.atoms().iter().any(|v| !a.contains(*v)) {
+    if j < db.len() {
+        // b has an atom that a lacks.
         return Ok(Some(None));
     }
     let Some(limit) = Mono::from_pairs(limit).and_then(|m| pk.pack(&m)) else {

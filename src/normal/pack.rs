@@ -62,8 +62,14 @@ impl Packing {
     }
 
     /// The monomial of a packed value.
-    pub fn unpack(&self, mut v: u128) -> Mono {
-        let mut pairs = Vec::new();
+    pub fn unpack(&self, v: u128) -> Mono {
+        let nonzero = self
+            .fields
+            .iter()
+            .filter(|&&(_, shift, width)| (v >> shift) & ((1u128 << width) - 1) != 0)
+            .count();
+        let mut v = v;
+        let mut pairs = Vec::with_capacity(nonzero);
         for &(a, _, width) in &self.fields {
             let mask = (1u128 << width) - 1;
             let e = (v & mask) as u32;
@@ -92,7 +98,7 @@ impl Packing {
 }
 
 /// The largest exponent of every atom of `p`, ascending by atom id.
-fn degrees(p: &Poly) -> Vec<(AtomId, u64)> {
+pub(crate) fn degrees(p: &Poly) -> Vec<(AtomId, u64)> {
     let mut out: Vec<(AtomId, u64)> = Vec::new();
     for (m, _) in p.terms() {
         for &(a, e) in m.pairs() {
