@@ -62,23 +62,26 @@ impl Packing {
     }
 
     /// The monomial of a packed value.
-    pub fn unpack(&self, v: u128) -> Mono {
-        let nonzero = self
-            .fields
-            .iter()
-            .filter(|&&(_, shift, width)| (v >> shift) & ((1u128 << width) - 1) != 0)
-            .count();
-        let mut v = v;
-        let mut pairs = Vec::with_capacity(nonzero);
+    pub fn unpack(&self, mut v: u128) -> Mono {
+        // At most 128 fields (each at least one bit wide): collect on the stack, then
+        // allocate once, at the right size.
+        let mut buf = [(0 as AtomId, 0u32); 128];
+        let mut n = 0;
         for &(a, _, width) in &self.fields {
             let mask = (1u128 << width) - 1;
             let e = (v & mask) as u32;
             if e != 0 {
-                pairs.push((a, e));
+                if let Some(slot) = buf.get_mut(n) {
+                    *slot = (a, e);
+                    n += 1;
+                }
             }
             v >>= width;
+            if v == 0 {
+                break;
+            }
         }
-        Mono::from_sorted_pairs(pairs)
+        Mono::from_sorted_pairs(buf.get(..n).unwrap_or(&[]).to_vec())
     }
 
     /// `a / b` when `b` divides `a` and every exponent of the quotient is at most the
