@@ -102,6 +102,32 @@ impl Packing {
 
 /// The largest exponent of every atom of `p`, ascending by atom id.
 pub(crate) fn degrees(p: &Poly) -> Vec<(AtomId, u64)> {
+    let (mut lo, mut hi) = (AtomId::MAX, 0);
+    for (m, _) in p.terms() {
+        if let (Some(first), Some(last)) = (m.pairs().first(), m.pairs().last()) {
+            lo = lo.min(first.0);
+            hi = hi.max(last.0);
+        }
+    }
+    if lo > hi {
+        return Vec::new();
+    }
+    if hi - lo < 4096 {
+        // A direct table over the atom ids in use.
+        let mut table = vec![0u32; (hi - lo) as usize + 1];
+        for (m, _) in p.terms() {
+            for &(a, e) in m.pairs() {
+                if let Some(t) = table.get_mut((a - lo) as usize) {
+                    *t = (*t).max(e);
+                }
+            }
+        }
+        return (lo..=hi)
+            .zip(table)
+            .filter(|t| t.1 > 0)
+            .map(|(a, e)| (a, u64::from(e)))
+            .collect();
+    }
     let mut out: Vec<(AtomId, u64)> = Vec::new();
     for (m, _) in p.terms() {
         for &(a, e) in m.pairs() {
@@ -179,6 +205,20 @@ mod tests {
         assert!(p.pack(&mono(&[(1, 4)])).is_none());
         assert!(p.pack(&mono(&[(2, 1)])).is_none());
         assert!(p.pack(&mono(&[(9, 1)])).is_none());
+    }
+
+    #[test]
+    fn degrees_near_and_far_apart() {
+        let q = super::super::poly::Q::one();
+        for far in [7, 100_000] {
+            let p = Poly::from_terms(vec![
+                (mono(&[(3, 2), (far, 1)]), q.clone()),
+                (mono(&[(3, 5)]), q.clone()),
+                (mono(&[(far, 4)]), q.clone()),
+            ]);
+            assert_eq!(degrees(&p), vec![(3, 5), (far, 4)]);
+        }
+        assert!(degrees(&Poly::one()).is_empty());
     }
 
     proptest! {
