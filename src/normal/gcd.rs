@@ -36,7 +36,7 @@ pub fn div_exact(a: &Poly, b: &Poly) -> Result<Option<Poly>, Limit> {
     };
     let cb_inv = cb.recip();
     if let Some(pk) = super::pack::Packing::for_quotient(a, b) {
-        if let Some(r) = div_exact_packed(a, b, &pk, &cb_inv)? {
+        if let Some(r) = div_exact_packed(a, b, &pk, &cb)? {
             return Ok(r);
         }
     }
@@ -81,7 +81,7 @@ fn div_exact_packed(
     a: &Poly,
     b: &Poly,
     pk: &super::pack::Packing,
-    cb_inv: &Q,
+    cb: &Q,
 ) -> Result<Option<Option<Poly>>, Limit> {
     // An exact quotient has degree deg_v(a) − deg_v(b) in every atom v: a larger
     // quotient exponent proves b ∤ a, and keeps every packed sum within its field.
@@ -129,7 +129,7 @@ fn div_exact_packed(
         let Some(m) = pk.div(mr, mb, limit) else {
             return Ok(Some(None));
         };
-        let c = super::qops::mul(&cr, cb_inv);
+        let c = super::qops::div(&cr, cb);
         for (mt, ct) in &pb {
             let v = super::qops::mul(ct, &c);
             match r.entry(mt + m) {

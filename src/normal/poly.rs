@@ -297,6 +297,19 @@ impl Poly {
             let (m, q) = &small.terms[0];
             return big.mul_term(m, q);
         }
+        // Multiply over ℤ: scale both sides to integer coefficients, multiply, scale back
+        // once per result term. Small products accumulate in i128, the rest in BigInt.
+        let (sa, ia) = integer_form(small);
+        let (sb, ib) = integer_form(big);
+        let scale = sa * sb;
+        let bits = |v: &[(&Mono, BigInt)]| v.iter().map(|t| t.1.bits()).max().unwrap_or(0);
+        let fits =
+            bits(&ia) + bits(&ib) + (usize::BITS - small.len().leading_zeros()) as u64 + 2 < 126;
+        if fits {
+            if let Some(out) = mul_packed(&ia, &ib, &scale, small, big)? {
+                return Ok(out);
+            }
+        }
         if small.len() <= 8 {
             // A short factor: each of its terms shifts `big` in order, and a merge
             // tree of the sorted shifts needs no hashing.
@@ -322,19 +335,6 @@ impl Poly {
                 return Err(Limit::Terms);
             }
             return Ok(out);
-        }
-        // Multiply over ℤ: scale both sides to integer coefficients, multiply, scale back
-        // once per result term. Small products accumulate in i128, the rest in BigInt.
-        let (sa, ia) = integer_form(small);
-        let (sb, ib) = integer_form(big);
-        let scale = sa * sb;
-        let bits = |v: &[(&Mono, BigInt)]| v.iter().map(|t| t.1.bits()).max().unwrap_or(0);
-        let fits =
-            bits(&ia) + bits(&ib) + (usize::BITS - small.len().leading_zeros()) as u64 + 2 < 126;
-        if fits {
-            if let Some(out) = mul_packed(&ia, &ib, &scale, small, big)? {
-                return Ok(out);
-            }
         }
         let mut terms: Vec<(Mono, Q)> = if fits {
             let ib: Vec<(&Mono, i128)> = ib.iter().map(|t| (t.0, i128_of(&t.1))).collect();

@@ -152,6 +152,11 @@ pub fn sub(a: &Q, b: &Q) -> Q {
 /// `a / b`, `b ≠ 0`.
 pub fn div(a: &Q, b: &Q) -> Q {
     match (small(a), small(b)) {
+        (Some((an, 1)), Some((bn, 1))) if an.checked_rem(bn) == Some(0) => {
+            // An exact integer quotient needs no gcd (i64::MIN % -1 overflows, so
+            // checked_rem sends it to the general path).
+            int(i128::from(an) / i128::from(bn))
+        }
         (Some((an, ad)), Some((bn, bd))) if bn != 0 => make(
             i128::from(an) * i128::from(bd),
             i128::from(ad) * i128::from(bn),

@@ -2,7 +2,9 @@
 //! substitution, and gcd-reduced results: `x_i = num_i / det`, each in lowest terms.
 
 use crate::normal::gcd::{div_exact, gcd};
-use crate::normal::{Limit, NormError, Poly, Rat};
+use crate::normal::mono::Mono;
+use crate::normal::{Limit, NormError, Poly, Rat, Q};
+use num_traits::One;
 use std::fmt;
 
 /// Why a system could not be solved.
@@ -63,6 +65,48 @@ pub fn solve(a: &[Vec<Rat>], b: &[Rat]) -> Result<Vec<Rat>, LinearError> {
         }
         m.push(out);
     }
+    // Integer coefficients: Bareiss then stays over ℤ, where the word-size fast paths
+    // of the coefficient arithmetic apply.
+    for row in m.iter_mut() {
+        let mut l = num_bigint::BigInt::one();
+        for e in row.iter() {
+            for (_, q) in e.terms() {
+                if !q.denom().is_one() {
+                    l = num_integer::Integer::lcm(&l, q.denom());
+                }
+            }
+        }
+        if !l.is_one() {
+            let l = Q::from_integer(l);
+            for e in row.iter_mut() {
+                *e = e.scale(&l);
+            }
+        }
+    }
+    // Monomial factors common to a row (right-hand side included) do not change the
+    // solution; one common to column j is moved into the unknown (x_j = y_j / c_j).
+    // Both shrink the determinant and spare the final gcds (the chain of rods has
+    // l_i l_j in every entry).
+    for row in m.iter_mut() {
+        let c = row_content(row.iter());
+        if !c.is_one() {
+            for e in row.iter_mut() {
+                *e = e.div_mono(&c).ok_or(Limit::Exponent)?;
+            }
+        }
+    }
+    let mut col_factor = Vec::with_capacity(n);
+    for j in 0..n {
+        let c = row_content(m.iter().filter_map(|r| r.get(j)));
+        if !c.is_one() {
+            for r in m.iter_mut() {
+                if let Some(e) = r.get_mut(j) {
+                    *e = e.div_mono(&c).ok_or(Limit::Exponent)?;
+                }
+            }
+        }
+        col_factor.push(c);
+    }
     // Bareiss: after step k, every entry below and right of the pivot is a minor.
     let mut prev = Poly::one();
     for k in 0..n {
@@ -100,8 +144,29 @@ pub fn solve(a: &[Vec<Rat>], b: &[Rat]) -> Result<Vec<Rat>, LinearError> {
         nums[i] = div_exact(&t, &m[i][i])?.ok_or(Limit::Terms)?;
     }
     let mut out = Vec::with_capacity(n);
-    for num in nums {
-        out.push(Rat::new(num, det.clone())?);
+    for (num, c) in nums.into_iter().zip(col_factor) {
+        let y = Rat::new(num, det.clone())?;
+        out.push(if c.is_one() {
+            y
+        } else {
+            y.div(&Rat::poly(Poly::term(c, Q::one()))?)?
+        });
     }
     Ok(out)
+}
+
+/// The greatest monomial dividing every nonzero polynomial of `entries`.
+fn row_content<'a>(entries: impl Iterator<Item = &'a Poly>) -> Mono {
+    let mut g: Option<Mono> = None;
+    for e in entries.filter(|e| !e.is_zero()) {
+        let c = e.mono_content();
+        g = Some(match g {
+            None => c,
+            Some(g) => g.gcd(&c),
+        });
+        if g.as_ref().is_some_and(Mono::is_one) {
+            break;
+        }
+    }
+    g.unwrap_or_else(Mono::one)
 }
