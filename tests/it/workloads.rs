@@ -197,3 +197,22 @@ fn w3_solutions_are_canonical_and_right() {
         }
     }
 }
+
+#[test]
+fn linear_solver_edge_cases() {
+    use rigor::solve::{solve, LinearError};
+    let s = |t: &str| normal(t);
+    // Singular: the second row is twice the first.
+    let a = vec![vec![s("a"), s("b")], vec![s("2 a"), s("2 b")]];
+    assert_eq!(solve(&a, &[s("1"), s("2")]), Err(LinearError::Singular));
+    // One unknown, a rational-function coefficient.
+    let x = solve(&[vec![s("m/(2 L)")]], &[s("F")]).expect("regular");
+    assert_eq!(x, vec![s("2 F L/m")]);
+    // No unknowns at all, and a shape mismatch.
+    assert_eq!(solve(&[], &[]), Ok(Vec::new()));
+    assert_eq!(solve(&[vec![s("1")]], &[]), Err(LinearError::Shape));
+    // A zero in the leading position needs a row swap (and its sign).
+    let a = vec![vec![s("0"), s("k")], vec![s("m"), s("c")]];
+    let x = solve(&a, &[s("p"), s("q")]).expect("regular");
+    assert_eq!(x, vec![s("(q k - c p)/(m k)"), s("p/k")]);
+}
