@@ -110,42 +110,17 @@ pub fn solve(a: &[Vec<Rat>], b: &[Rat]) -> Result<Vec<Rat>, LinearError> {
         }
         col_factor.push(c);
     }
-    // Two exact methods, one result (the canonical x_i): fraction-free Gauss–Jordan is
-    // cheap when the minors stay small (the chain of rods), Cramer's rule (one Bareiss
-    // determinant per numerator) when they grow (dense or banded matrices, where
-    // Gauss–Jordan multiplies large minors by one another). The determinant and the
-    // first and last numerators (whose costs differ most in structured systems) price
-    // Cramer's rule in term products; Gauss–Jordan runs within that budget, else
-    // Cramer's rule finishes the work. Either way nothing is guessed: both are exact.
-    let mut work = Work::new(u128::MAX);
-    let det = determinant(columns(&m, n, None), &mut work)?.ok_or(Limit::Terms)?;
+    // Cramer's rule, x_i = det(A with column i replaced by b) / det(A), with one
+    // fraction-free (Bareiss) elimination per determinant. Every intermediate entry is
+    // a minor, never a minor times a whole numerator as in back substitution or the
+    // upper half of Gauss–Jordan.
+    let det = determinant(columns(&m, n, None))?;
     if det.is_zero() {
         return Err(LinearError::Singular);
     }
-    let before = work.done;
-    let first = determinant(columns(&m, n, Some(0)), &mut work)?.ok_or(Limit::Terms)?;
-    let last = if n > 1 {
-        Some(determinant(columns(&m, n, Some(n - 1)), &mut work)?.ok_or(Limit::Terms)?)
-    } else {
-        None
-    };
-    let probes = if n > 1 { 2 } else { 1 };
-    let budget = (work.done - before).saturating_mul(n as u128) / probes;
-    // A Gauss–Jordan that hits a resource limit (its products of large minors) also
-    // leaves the work to Cramer's rule, which stays within smaller products.
-    let (nums, det) = match gauss_jordan(&mut m.clone(), n, &mut Work::new(budget)) {
-        Ok(Some(solved)) => solved,
-        Err(LinearError::Singular) => return Err(LinearError::Singular),
-        Ok(None) | Err(_) => {
-            let mut nums = vec![first];
-            for i in 1..n.saturating_sub(1) {
-                let d = determinant(columns(&m, n, Some(i)), &mut work)?;
-                nums.push(d.ok_or(Limit::Terms)?);
-            }
-            nums.extend(last);
-            (nums, det)
-        }
-    };
+    let nums = (0..n)
+        .map(|i| determinant(columns(&m, n, Some(i))))
+        .collect::<Result<Vec<Poly>, LinearError>>()?;
     let mut out = Vec::with_capacity(n);
     for (num, c) in nums.into_iter().zip(col_factor) {
         let y = Rat::new(num, det.clone())?;
@@ -158,41 +133,25 @@ pub fn solve(a: &[Vec<Rat>], b: &[Rat]) -> Result<Vec<Rat>, LinearError> {
     Ok(out)
 }
 
-/// Term products spent, against a budget.
-struct Work {
-    done: u128,
-    budget: u128,
-}
-
-impl Work {
-    fn new(budget: u128) -> Work {
-        Work { done: 0, budget }
-    }
-
-    /// Counts the term products of `a · b`; false once over budget.
-    fn charge(&mut self, a: &Poly, b: &Poly) -> bool {
-        let cost = (a.len() as u128).saturating_mul(b.len() as u128);
-        self.done = self.done.saturating_add(cost);
-        self.done <= self.budget
-    }
-}
-
-/// The matrix `A` (the first `n` columns of `m`), with column `i` replaced by the
-/// right-hand side (column `n`) when `i` is given.
-fn columns(m: &[Vec<Poly>], n: usize, i: Option<usize>) -> Vec<Vec<Poly>> {
-    m.iter()
-        .map(|r| {
-            (0..n)
-                .map(|j| {
-                    if Some(j) == i {
-                        r[n].clone()
-                    } else {
-                        r[j].clone()
-                    }
-                })
-                .collect()
-        })
-        .collect()
+/// The matrix `A` (the first `n` columns of `m`) or, for the numerator of `x_i`, `A`
+/// without column `i` and with the right-hand side (column `n`) appended last, and the
+/// sign that makes its determinant `det(A with column i replaced by b)`. The
+/// right-hand side is usually the least structured column: eliminated last, it leaves
+/// the elimination of the others as cheap as in `det A`.
+fn columns(m: &[Vec<Poly>], n: usize, i: Option<usize>) -> (Vec<Vec<Poly>>, bool) {
+    let keep: Vec<usize> = match i {
+        None => (0..n).collect(),
+        Some(i) => (0..n)
+            .filter(|&j| j != i)
+            .chain(std::iter::once(n))
+            .collect(),
+    };
+    let rows = m
+        .iter()
+        .map(|r| keep.iter().map(|&j| r[j].clone()).collect())
+        .collect();
+    // Moving column i to the end is n − 1 − i adjacent swaps.
+    (rows, i.is_some_and(|i| (n - 1 - i) % 2 == 1))
 }
 
 /// The row (from `k` down) with the shortest nonzero entry in column `k`.
@@ -203,34 +162,24 @@ fn pivot_row(m: &[Vec<Poly>], k: usize) -> Option<usize> {
 }
 
 /// `(a·b − c·d) / prev`, exact by Bareiss's theorem.
-fn bareiss_entry(
-    a: &Poly,
-    b: &Poly,
-    c: &Poly,
-    d: &Poly,
-    prev: &Poly,
-    work: &mut Work,
-) -> Result<Option<Poly>, LinearError> {
-    if !work.charge(a, b) || !work.charge(c, d) {
-        return Ok(None);
-    }
+fn bareiss_entry(a: &Poly, b: &Poly, c: &Poly, d: &Poly, prev: &Poly) -> Result<Poly, LinearError> {
     let t = if c.is_zero() || d.is_zero() {
         a.mul(b)?
     } else {
         a.mul(b)?.sub(&c.mul(d)?)
     };
-    Ok(Some(div_exact(&t, prev)?.ok_or(Limit::Terms)?))
+    Ok(div_exact(&t, prev)?.ok_or(Limit::Terms)?)
 }
 
-/// The determinant by Bareiss elimination (the sign of the row swaps included);
-/// zero for a singular matrix, `None` over budget.
-fn determinant(mut m: Vec<Vec<Poly>>, work: &mut Work) -> Result<Option<Poly>, LinearError> {
+/// The determinant by Bareiss elimination, negated when `negate` (the sign of the row
+/// swaps included); zero for a singular matrix.
+fn determinant((mut m, negate): (Vec<Vec<Poly>>, bool)) -> Result<Poly, LinearError> {
     let n = m.len();
     let mut prev = Poly::one();
-    let mut negate = false;
+    let mut negate = negate;
     for k in 0..n {
         let Some(p) = pivot_row(&m, k) else {
-            return Ok(Some(Poly::zero()));
+            return Ok(Poly::zero());
         };
         if p != k {
             m.swap(k, p);
@@ -238,46 +187,13 @@ fn determinant(mut m: Vec<Vec<Poly>>, work: &mut Work) -> Result<Option<Poly>, L
         }
         for i in k + 1..n {
             for j in k + 1..n {
-                let Some(e) = bareiss_entry(&m[k][k], &m[i][j], &m[i][k], &m[k][j], &prev, work)?
-                else {
-                    return Ok(None);
-                };
-                m[i][j] = e;
+                m[i][j] = bareiss_entry(&m[k][k], &m[i][j], &m[i][k], &m[k][j], &prev)?;
             }
             m[i][k] = Poly::zero();
         }
         prev = m[k][k].clone();
     }
-    Ok(Some(if negate { prev.neg() } else { prev }))
-}
-
-/// Fraction-free Gauss–Jordan on `[A | b]`: every step eliminates above the pivot
-/// too, every entry stays a minor, and the last column ends as the numerators over
-/// the last pivot. `None` over budget.
-#[allow(clippy::type_complexity)]
-fn gauss_jordan(
-    m: &mut [Vec<Poly>],
-    n: usize,
-    work: &mut Work,
-) -> Result<Option<(Vec<Poly>, Poly)>, LinearError> {
-    let mut prev = Poly::one();
-    for k in 0..n {
-        let p = pivot_row(m, k).ok_or(LinearError::Singular)?;
-        m.swap(k, p);
-        for i in (0..n).filter(|&i| i != k) {
-            for j in k + 1..=n {
-                let Some(e) = bareiss_entry(&m[k][k], &m[i][j], &m[i][k], &m[k][j], &prev, work)?
-                else {
-                    return Ok(None);
-                };
-                m[i][j] = e;
-            }
-            m[i][k] = Poly::zero();
-        }
-        prev = m[k][k].clone();
-    }
-    // Every diagonal entry is now the last pivot.
-    Ok(Some((m.iter().map(|r| r[n].clone()).collect(), prev)))
+    Ok(if negate { prev.neg() } else { prev })
 }
 
 /// The greatest monomial dividing every nonzero polynomial of `entries`.
