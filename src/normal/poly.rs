@@ -136,6 +136,25 @@ impl Poly {
         Poly { terms }
     }
 
+    /// `self` with atom `x` renamed to `a`, an atom that does not occur in `self`.
+    pub(crate) fn rename(&self, x: AtomId, a: AtomId) -> Option<Poly> {
+        if !self.contains(x) {
+            return Some(self.clone());
+        }
+        let mut terms: Vec<(Mono, Q)> = Vec::with_capacity(self.terms.len());
+        for (m, q) in &self.terms {
+            let pairs = m
+                .pairs()
+                .iter()
+                .map(|&(b, e)| (if b == x { a } else { b }, e))
+                .collect();
+            terms.push((Mono::from_pairs(pairs)?, q.clone()));
+        }
+        // Distinct monomials stay distinct (a is new): sorting restores the order.
+        terms.sort_unstable_by(|s, t| s.0.cmp(&t.0));
+        Some(Poly { terms })
+    }
+
     /// The terms, ascending.
     pub fn terms(&self) -> &[(Mono, Q)] {
         &self.terms

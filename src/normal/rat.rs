@@ -227,6 +227,27 @@ impl Rat {
         }
     }
 
+    /// `self` with symbol `x` renamed to symbol `a`, when `a` does not occur in it (not
+    /// even inside another atom) and `x` occurs only as itself: renaming is then a ring
+    /// isomorphism, so the fraction stays reduced and needs no gcd.
+    pub fn rename_symbol(&self, x: super::atom::AtomId, a: super::atom::AtomId) -> Option<Rat> {
+        use super::atom::{self, Atom};
+        let symbol = |id| matches!(&*atom::get(id), Atom::Sym(_));
+        if !symbol(x) || !symbol(a) {
+            return None;
+        }
+        // `a` nowhere, not even inside another atom (`sqrt(a)` would relate to `a`).
+        if super::subst::depends_on(self, a)
+            || self
+                .atoms()
+                .iter()
+                .any(|&b| b != x && super::subst::atom_depends_on(b, x))
+        {
+            return None;
+        }
+        Some(Rat::monic(self.num.rename(x, a)?, self.den.rename(x, a)?))
+    }
+
     /// `(a/b)·(c/d)` for reduced fractions of rule-free atoms: cancel `gcd(a, d)` and
     /// `gcd(c, b)`; the result is in lowest terms.
     fn mul_free(a: &Poly, b: &Poly, c: &Poly, d: &Poly) -> Result<Rat, NormError> {

@@ -213,6 +213,9 @@ pub fn subst_atom(r: &Rat, x: AtomId, v: &Rat, s: &Assumptions) -> Result<Rat, N
     if !depends_on(r, x) {
         return Ok(r.clone());
     }
+    if let Some(renamed) = v.as_atom().and_then(|a| r.rename_symbol(x, a)) {
+        return Ok(renamed);
+    }
     let f = |a: AtomId| (a == x).then(|| v.clone());
     Subst::new(&f, s).rat(r)
 }

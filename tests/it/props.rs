@@ -275,6 +275,17 @@ proptest! {
     }
 
     #[test]
+    fn renaming_matches_general_substitution(p in poly(), q in poly()) {
+        // x → w with w fresh takes the renaming shortcut; x → w + 1 then w → w − 1
+        // takes the general path to the same place.
+        let f = format!("({p})/(({q})^2 + 1)");
+        prop_assert_eq!(
+            plain_of(&format!("subs({f}, x, w)")),
+            plain_of(&format!("subs(subs({f}, x, w + 1), w, w - 1)"))
+        );
+    }
+
+    #[test]
     fn exponentials_merge(p in poly(), q in poly()) {
         prop_assert_eq!(
             plain_of(&format!("exp({p}) exp({q})")),
