@@ -29,7 +29,9 @@ pub fn div_exact(a: &Poly, b: &Poly) -> Result<Option<Poly>, Limit> {
     }
     if b.len() == 1 {
         let (m, c) = &b.terms()[0];
-        return Ok(a.div_mono(m).map(|q| q.scale(&c.recip())));
+        return Ok(a
+            .div_mono(m)
+            .map(|q| if c.is_one() { q } else { q.scale(&c.recip()) }));
     }
     let Some((mb, cb)) = b.lead().cloned() else {
         return Ok(None);

@@ -272,7 +272,15 @@ impl Poly {
 
     /// The difference.
     pub fn sub(&self, other: &Poly) -> Poly {
-        self.add(&other.neg())
+        self.clone().sub_owned(other.clone())
+    }
+
+    /// The difference, consuming both sides.
+    pub fn sub_owned(self, mut other: Poly) -> Poly {
+        for t in &mut other.terms {
+            t.1 = -std::mem::take(&mut t.1);
+        }
+        self.add_owned(other)
     }
 
     /// `q · self`.

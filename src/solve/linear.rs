@@ -166,7 +166,7 @@ fn bareiss_entry(a: &Poly, b: &Poly, c: &Poly, d: &Poly, prev: &Poly) -> Result<
     let t = if c.is_zero() || d.is_zero() {
         a.mul(b)?
     } else {
-        a.mul(b)?.sub(&c.mul(d)?)
+        a.mul(b)?.sub_owned(c.mul(d)?)
     };
     Ok(div_exact(&t, prev)?.ok_or(Limit::Terms)?)
 }
