@@ -498,7 +498,9 @@ mod tests {
     proptest! {
         #[test]
         fn exact_division_recovers_the_factor(a in poly(), b in poly(), r in poly()) {
-            prop_assume!(!b.is_zero());
+            if b.is_zero() {
+                return Ok(());
+            }
             let ab = a.mul(&b).unwrap_or_else(|_| Poly::zero());
             prop_assert_eq!(div_exact(&ab, &b), Ok(Some(a.clone())));
             // With a remainder the division is not exact, unless b divides it.
