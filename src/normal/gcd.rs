@@ -36,25 +36,44 @@ pub fn div_exact(a: &Poly, b: &Poly) -> Result<Option<Poly>, Limit> {
     let Some((mb, cb)) = b.lead().cloned() else {
         return Ok(None);
     };
-    let cb_inv = cb.recip();
     if let Some(pk) = super::pack::Packing::for_quotient(a, b) {
         if let Some(r) = div_exact_packed(a, b, &pk, &cb)? {
             return Ok(r);
         }
     }
-    // The remainder as an ordered map: each quotient term costs |b| updates, not |a|.
-    let mut r: BTreeMap<Mono, Q> = a.terms().iter().cloned().collect();
-    let rest: Vec<(Mono, Q)> = b.terms()[..b.len() - 1].to_vec();
-    let mut q_terms: Vec<(Mono, Q)> = Vec::new();
+    let rest = &b.terms()[..b.len() - 1];
+    let q = divide(
+        a.terms().iter().cloned(),
+        rest,
+        &cb,
+        |mr| mr.div(&mb),
+        |mt, m| mt.mul(m).ok_or(Limit::Exponent),
+    )?;
+    Ok(q.map(|q| Poly::from_sorted_terms(q.into_iter().rev().collect())))
+}
+
+/// The division loop of [`div_exact`] on any monomial key ordered like the monomials:
+/// the remainder is an ordered map, so each quotient term costs |b| updates, not |a|.
+/// `div` divides a remainder monomial by the leading monomial `cb` belongs to (`None`:
+/// `b ∤ a`), `mul` multiplies one of `rest` (b's other terms) by a quotient monomial.
+/// The quotient comes out in strictly descending order; `None` when `b ∤ a`.
+fn divide<K: Ord>(
+    a: impl Iterator<Item = (K, Q)>,
+    rest: &[(K, Q)],
+    cb: &Q,
+    div: impl Fn(&K) -> Option<K>,
+    mul: impl Fn(&K, &K) -> Result<K, Limit>,
+) -> Result<Option<Vec<(K, Q)>>, Limit> {
+    let mut r: BTreeMap<K, Q> = a.collect();
+    let mut q_terms: Vec<(K, Q)> = Vec::new();
     while let Some((mr, cr)) = r.pop_last() {
-        let Some(m) = mr.div(&mb) else {
+        let Some(m) = div(&mr) else {
             return Ok(None);
         };
-        let c = super::qops::mul(&cr, &cb_inv);
-        for (mt, ct) in &rest {
-            let key = mt.mul(&m).ok_or(Limit::Exponent)?;
+        let c = super::qops::div(&cr, cb);
+        for (mt, ct) in rest {
             let v = super::qops::mul(ct, &c);
-            match r.entry(key) {
+            match r.entry(mul(mt, &m)?) {
                 Entry::Occupied(mut e) => {
                     *e.get_mut() = super::qops::sub(e.get(), &v);
                     if e.get().is_zero() {
@@ -74,7 +93,7 @@ pub fn div_exact(a: &Poly, b: &Poly) -> Result<Option<Poly>, Limit> {
             super::poly::check_deadline()?;
         }
     }
-    Ok(Some(Poly::from_terms(q_terms)))
+    Ok(Some(q_terms))
 }
 
 /// [`div_exact`] on packed monomials; `Ok(None)` when some monomial does not pack
@@ -125,37 +144,18 @@ fn div_exact_packed(
     let Some((mb, _)) = pb.pop() else {
         return Ok(Some(None));
     };
-    let mut r: BTreeMap<u128, Q> = pa.into_iter().collect();
-    let mut q_terms: Vec<(u128, Q)> = Vec::new();
-    while let Some((mr, cr)) = r.pop_last() {
-        let Some(m) = pk.div(mr, mb, limit) else {
-            return Ok(Some(None));
-        };
-        let c = super::qops::div(&cr, cb);
-        for (mt, ct) in &pb {
-            let v = super::qops::mul(ct, &c);
-            match r.entry(mt + m) {
-                Entry::Occupied(mut e) => {
-                    *e.get_mut() = super::qops::sub(e.get(), &v);
-                    if e.get().is_zero() {
-                        e.remove();
-                    }
-                }
-                Entry::Vacant(e) => {
-                    e.insert(-v);
-                }
-            }
-        }
-        q_terms.push((m, c));
-        if q_terms.len() > super::poly::max_terms() {
-            return Err(Limit::Terms);
-        }
-        if q_terms.len() % 256 == 0 {
-            super::poly::check_deadline()?;
-        }
-    }
-    // Quotient terms come out in strictly descending order.
-    let terms = q_terms
+    // The fields hold deg_v(a) ≥ exponent of mt + m: the sum never carries.
+    let Some(q) = divide(
+        pa.into_iter(),
+        &pb,
+        cb,
+        |&mr| pk.div(mr, mb, limit),
+        |mt, m| Ok(mt + m),
+    )?
+    else {
+        return Ok(Some(None));
+    };
+    let terms = q
         .into_iter()
         .rev()
         .map(|(m, c)| (pk.unpack(m), c))

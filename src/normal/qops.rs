@@ -16,49 +16,35 @@ fn small(q: &Q) -> Option<(i64, i64)> {
     Some((q.numer().to_i64()?, q.denom().to_i64()?))
 }
 
-/// Binary gcd of two unsigned 128-bit integers.
-fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
-    if a == 0 {
-        return b;
-    }
-    if b == 0 {
-        return a;
-    }
-    let shift = (a | b).trailing_zeros();
-    a >>= a.trailing_zeros();
-    loop {
-        b >>= b.trailing_zeros();
-        if a > b {
-            std::mem::swap(&mut a, &mut b);
+/// Binary (Stein) gcd, one body for each word size.
+macro_rules! binary_gcd {
+    ($name:ident, $t:ty) => {
+        /// Binary gcd of two unsigned integers.
+        fn $name(mut a: $t, mut b: $t) -> $t {
+            if a == 0 {
+                return b;
+            }
+            if b == 0 {
+                return a;
+            }
+            let shift = (a | b).trailing_zeros();
+            a >>= a.trailing_zeros();
+            loop {
+                b >>= b.trailing_zeros();
+                if a > b {
+                    std::mem::swap(&mut a, &mut b);
+                }
+                b -= a;
+                if b == 0 {
+                    return a << shift;
+                }
+            }
         }
-        b -= a;
-        if b == 0 {
-            return a << shift;
-        }
-    }
+    };
 }
 
-/// Binary gcd of two unsigned 64-bit integers.
-fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
-    if a == 0 {
-        return b;
-    }
-    if b == 0 {
-        return a;
-    }
-    let shift = (a | b).trailing_zeros();
-    a >>= a.trailing_zeros();
-    loop {
-        b >>= b.trailing_zeros();
-        if a > b {
-            std::mem::swap(&mut a, &mut b);
-        }
-        b -= a;
-        if b == 0 {
-            return a << shift;
-        }
-    }
-}
+binary_gcd!(gcd_u64, u64);
+binary_gcd!(gcd_u128, u128);
 
 /// `n` as a big integer (through `i64` when it fits: that conversion is cheaper).
 fn big(n: i128) -> BigInt {
@@ -92,11 +78,7 @@ fn make(n: i128, d: i128) -> Q {
         let (n, d) = if d < 0 { (-n, -d) } else { (n, d) };
         return Q::new_raw(big(n), big(d));
     }
-    let (un, ud) = (n.unsigned_abs(), d.unsigned_abs());
-    let g = match (u64::try_from(un), u64::try_from(ud)) {
-        (Ok(a), Ok(b)) => u128::from(gcd_u64(a, b)),
-        _ => gcd_u128(un, ud),
-    };
+    let g = gcd_u128(n.unsigned_abs(), d.unsigned_abs());
     // g ≤ |d| ≤ i128::MAX, so the cast is lossless; |n|, |d| < 2^127 by construction.
     let g = g as i128;
     let (mut n, mut d) = (n / g, d / g);

@@ -72,12 +72,9 @@ pub fn solve(a: &[Vec<Rat>], b: &[Rat]) -> Result<Vec<Rat>, LinearError> {
     // of the coefficient arithmetic apply.
     for row in m.iter_mut() {
         let mut l = num_bigint::BigInt::one();
-        for e in row.iter() {
-            for (_, q) in e.terms() {
-                if !q.denom().is_one() {
-                    l = num_integer::Integer::lcm(&l, q.denom());
-                }
-            }
+        for e in row.iter().filter(|e| !e.is_zero()) {
+            // The content's denominator is the lcm of the coefficients' denominators.
+            l = num_integer::Integer::lcm(&l, e.content().denom());
         }
         if !l.is_one() {
             let l = Q::from_integer(l);
