@@ -140,12 +140,13 @@ fn decide_with(
 /// Atoms that satisfy no algebraic relation rigor does not already apply.
 fn independent_atom(a: AtomId) -> bool {
     match &*atom::get(a) {
-        Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => true,
+        Atom::Sym(_) | Atom::Pi | Atom::Moment(..) | Atom::At(..) => true,
         // Square roots of distinct primes (rigor splits numeric radicands into primes
         // by trial division up to 10⁴, so a radicand below 10⁸ is a prime).
-        Atom::Sqrt(p) => p
-            .as_constant()
-            .is_some_and(|q| q.is_integer() && q.to_integer() < BigInt::from(100_000_000)),
+        // A negative radicand (`sqrt(-1)`) is not a real quantity and is never independent.
+        Atom::Sqrt(p) => p.as_constant().is_some_and(|q| {
+            q.is_integer() && q > Q::zero() && q.to_integer() < BigInt::from(100_000_000)
+        }),
         _ => false,
     }
 }
@@ -262,6 +263,11 @@ fn symbols_in_atom(a: AtomId, out: &mut Vec<AtomId>) {
             }
         }
         Atom::Pi | Atom::Moment(..) => {}
+        Atom::At(..) => {
+            if !out.contains(&a) {
+                out.push(a)
+            }
+        }
         Atom::Sqrt(p) | Atom::Root(p, _) | Atom::Abs(p) => symbols_in_poly(p, out),
         Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) => symbols_in(u, out),
         Atom::Pow(b, e) => {
@@ -451,10 +457,23 @@ impl<'a> Evaluator<'a> {
     fn atom_uncached(&mut self, a: AtomId) -> Option<Interval> {
         let p = self.prec;
         match &*atom::get(a) {
-            Atom::Sym(_) => self.point.get(&a).map(|q| Interval::point(q.clone())),
+            Atom::Sym(_) | Atom::At(..) => self.point.get(&a).map(|q| Interval::point(q.clone())),
             Atom::Pi => Interval::pi(p),
             Atom::Sqrt(x) => self.poly(x)?.sqrt(p),
-            Atom::Root(..) | Atom::Moment(..) => None,
+            Atom::Moment(..) => None,
+            // The real principal root; odd roots of negatives are negative.
+            Atom::Root(x, n) => {
+                let v = self.poly(x)?;
+                let inv = Interval::point(Q::new(BigInt::one(), BigInt::from(*n)));
+                let root = |v: &Interval| v.ln(p)?.mul(&inv, p)?.exp(p);
+                if v.is_positive() {
+                    root(&v)
+                } else if v.is_negative() && n % 2 == 1 {
+                    root(&v.neg()?)?.neg()
+                } else {
+                    None
+                }
+            }
             Atom::Abs(x) => self.poly(x)?.abs(),
             Atom::Sin(u) => self.rat(u)?.sin(p),
             Atom::Cos(u) => self.rat(u)?.cos(p),

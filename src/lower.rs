@@ -3,7 +3,7 @@
 //! Errors carry the span of the node that caused them.
 
 use crate::calculus::{self, Body, IntError, Wrt};
-use crate::normal::atom::{self, Atom};
+use crate::normal::atom::{self, Atom, AtomId};
 use crate::normal::subst::{depends_on, subst_atom};
 use crate::normal::{func, trig, Assumptions, NormError, Rat, Sign};
 use crate::syntax::ast::{BinOp, Expr, ExprKind, Func, Span};
@@ -100,11 +100,27 @@ pub struct Divisor {
 }
 
 /// Lowers expressions in an environment, recording divisions.
+///
+/// A bound variable (of `int`, `diff`, `subs`, `eval`, a body's coordinates) is fresh:
+/// while its operand is lowered, it knows only the sign its range gives, whatever a free
+/// symbol or a `let` name of the same name means outside.
 pub struct Lowerer<'a> {
     env: &'a Env,
+    /// The declared signs, with bound variables' signs overridden in their scopes.
+    signs: Assumptions,
     bound: Vec<String>,
     /// Every division by a non-constant expression met, in order.
     pub divisors: Vec<Divisor>,
+}
+
+/// What happens to the conditions recorded inside a bound variable's scope.
+enum Scope<'v> {
+    /// `subs(f, x, v)`: each condition at `x = v`.
+    At(&'v [Rat]),
+    /// A definite integral or a body: the variables range over a region.
+    Region,
+    /// `diff` or an antiderivative: the result is a function of the free name.
+    Free,
 }
 
 impl<'a> Lowerer<'a> {
@@ -112,28 +128,36 @@ impl<'a> Lowerer<'a> {
     pub fn new(env: &'a Env) -> Lowerer<'a> {
         Lowerer {
             env,
+            signs: env.signs.clone(),
             bound: Vec::new(),
             divisors: Vec::new(),
         }
     }
 
     fn signs(&self) -> &Assumptions {
-        &self.env.signs
+        &self.signs
     }
 
     fn note_divisor(&mut self, d: &Rat, span: Span) {
         self.note(d, Need::NonZero, span);
     }
 
+    /// Records a condition the signs do not settle; a constant one is recorded only when
+    /// it is false (so the step that needs it fails).
     fn note(&mut self, d: &Rat, need: Need, span: Span) {
-        if d.as_constant().is_some() {
-            return;
-        }
-        let s = self.signs().rat(d);
-        let settled = match need {
-            Need::NonZero => s.is_nonzero(),
-            Need::Positive => s == Sign::Pos,
-            Need::NonNegative => s.is_nonneg(),
+        let settled = if let Some(q) = d.as_constant() {
+            match need {
+                Need::NonZero => !num_traits::Zero::is_zero(&q),
+                Need::Positive => q.is_positive(),
+                Need::NonNegative => !q.is_negative(),
+            }
+        } else {
+            let s = self.signs().rat(d);
+            match need {
+                Need::NonZero => s.is_nonzero(),
+                Need::Positive => s == Sign::Pos,
+                Need::NonNegative => s.is_nonneg(),
+            }
         };
         if !settled {
             self.divisors.push(Divisor {
@@ -141,6 +165,116 @@ impl<'a> Lowerer<'a> {
                 need,
                 span,
             });
+        }
+    }
+
+    /// Whether `name` is the time variable and `time` symbols are declared.
+    fn is_time_var(&self, name: &str) -> bool {
+        name == "t" && !self.env.time.is_empty()
+    }
+
+    /// Lowers `e` with `vars` bound, each knowing only its sign; returns the value and
+    /// the conditions recorded inside, for the caller to carry out of the scope.
+    fn lower_in_scope(
+        &mut self,
+        e: &Expr,
+        vars: &[(String, Sign)],
+    ) -> Result<(Rat, Vec<Divisor>), LowerError> {
+        let outer = std::mem::take(&mut self.divisors);
+        let mut saved = Vec::with_capacity(vars.len());
+        for (name, sign) in vars {
+            let x = atom::sym(name);
+            saved.push((x, self.signs.declared(x)));
+            self.signs.set(x, *sign);
+            self.bound.push(name.clone());
+        }
+        let r = self.lower(e);
+        for (x, sign) in saved.into_iter().rev() {
+            self.signs.set(x, sign);
+            self.bound.pop();
+        }
+        let inner = std::mem::replace(&mut self.divisors, outer);
+        Ok((r?, inner))
+    }
+
+    /// Carries conditions recorded in the scope of `var` out of it.
+    fn carry(
+        &mut self,
+        inner: Vec<Divisor>,
+        var: &str,
+        scope: Scope<'_>,
+        sp: Span,
+    ) -> Result<(), LowerError> {
+        let x = atom::sym(var);
+        for d in inner {
+            if !depends_on(&d.value, x) {
+                self.note(&d.value, d.need, d.span);
+                continue;
+            }
+            match &scope {
+                Scope::At(points) => {
+                    for v in points.iter() {
+                        let at = self.at(&d.value, var, v).map_err(|e| err(sp, e))?;
+                        self.note(&at, d.need, d.span);
+                    }
+                }
+                // A divisor vanishes on a set of measure zero: the integral is unchanged.
+                Scope::Region if d.need == Need::NonZero => {}
+                Scope::Region => {
+                    let op = if d.need == Need::Positive { ">" } else { ">=" };
+                    return Err(msg(
+                        d.span,
+                        format!(
+                            "the integrand needs {} {op} 0 for every {var} in the range, which the signs do not show",
+                            crate::normal::print::plain(&d.value)
+                        ),
+                    ));
+                }
+                Scope::Free => {
+                    let v = self.free_meaning(&d.value, var).map_err(|e| err(sp, e))?;
+                    self.note(&v, d.need, d.span);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// `r` (a function of the bound `var`) read with `var` meaning what the name means
+    /// outside: a `let` name's value, or the free symbol with its declared sign.
+    fn free_meaning(&self, r: &Rat, var: &str) -> Result<Rat, NormError> {
+        let x = atom::sym(var);
+        match self.env.defs.get(var) {
+            Some(v) if !self.bound.iter().any(|b| b == var) => subst_atom(r, x, v, self.signs()),
+            _ => crate::normal::subst::rebuild_under(r, x, self.signs()),
+        }
+    }
+
+    /// `r` at `var = v`; over the time variable, `time` symbols are taken at the instant.
+    fn at(&self, r: &Rat, var: &str, v: &Rat) -> Result<Rat, NormError> {
+        let x = atom::sym(var);
+        if self.is_time_var(var) {
+            let time = &self.env.time;
+            let is_time = |b: &str| time.contains(b);
+            return calculus::at_instant(r, x, v, &is_time, self.signs());
+        }
+        subst_atom(r, x, v, self.signs())
+    }
+
+    /// The sign a variable ranging between `a` and `b` (either order) has inside the range.
+    fn range_sign(&self, a: &Rat, b: &Rat) -> Sign {
+        let (sa, sb) = (self.signs().rat(a), self.signs().rat(b));
+        let pos = |s: Sign| s == Sign::Pos;
+        let neg = |s: Sign| s == Sign::Neg;
+        if (pos(sa) && sb.is_nonneg()) || (pos(sb) && sa.is_nonneg()) {
+            Sign::Pos
+        } else if sa.is_nonneg() && sb.is_nonneg() {
+            Sign::NonNeg
+        } else if (neg(sa) && sb.is_nonpos()) || (neg(sb) && sa.is_nonpos()) {
+            Sign::Neg
+        } else if sa.is_nonpos() && sb.is_nonpos() {
+            Sign::NonPos
+        } else {
+            Sign::Unknown
         }
     }
 
@@ -217,101 +351,103 @@ impl<'a> Lowerer<'a> {
         }
     }
 
-    fn lower_bound(&mut self, e: &Expr, var: &str) -> Result<Rat, LowerError> {
-        self.bound.push(var.to_string());
-        let r = self.lower(e);
-        self.bound.pop();
-        r
-    }
-
     fn call(&mut self, f: Func, args: &[Expr], sp: Span) -> Result<Rat, LowerError> {
-        let s = self.env.signs.clone();
         match f {
             Func::Sqrt | Func::Sin | Func::Cos | Func::Tan | Func::Exp | Func::Ln | Func::Abs => {
-                let a = self.arg(args, 0, sp)?;
-                let u = self.lower(a)?;
-                match f {
-                    Func::Sqrt => self.note(&u, Need::NonNegative, a.span),
-                    Func::Ln => self.note(&u, Need::Positive, a.span),
-                    _ => {}
-                }
-                let r = match f {
-                    Func::Sqrt => func::sqrt(&u, &s),
-                    Func::Sin => trig::sin(&u),
-                    Func::Cos => trig::cos(&u),
-                    Func::Tan => {
-                        let c = trig::cos(&u).map_err(|e| err(sp, e))?;
-                        if c.is_zero() {
-                            return Err(msg(
-                                sp,
-                                "tan is undefined here: the cosine is exactly zero",
-                            ));
-                        }
-                        self.note_divisor(&c, sp);
-                        trig::tan(&u)
-                    }
-                    Func::Exp => func::exp(&u),
-                    Func::Ln => func::ln(&u, &s),
-                    _ => func::abs(&u, &s),
-                };
-                r.map_err(|e| err(sp, e))
+                self.function(f, args, sp)
             }
             Func::Int => self.int(args, sp),
-            Func::Diff => {
-                let var = self.var_name(self.arg(args, 1, sp)?, "the variable of diff")?;
-                let n = match args.get(2) {
-                    None => 1,
-                    Some(ne) => {
-                        let nv = self.lower(ne)?;
-                        nv.as_constant()
-                            .filter(|q| q.is_integer() && !q.is_negative())
-                            .and_then(|q| q.to_integer().to_u32())
-                            .filter(|n| *n <= 1000)
-                            .ok_or_else(|| {
-                                msg(
-                                    ne.span,
-                                    "the order of diff must be a whole number from 0 to 1000",
-                                )
-                            })?
-                    }
-                };
-                let body = self.arg(args, 0, sp)?;
-                self.bound.push(var.clone());
-                let fv = self.lower(body);
-                self.bound.pop();
-                let fv = fv?;
-                let x = atom::sym(&var);
-                let time = &self.env.time;
-                let is_time = |b: &str| time.contains(b);
-                let wrt = Wrt {
-                    var: x,
-                    time: (var == "t").then_some(&is_time as &dyn Fn(&str) -> bool),
-                };
-                calculus::diff_n(&fv, &wrt, n, &s).map_err(|e| err(sp, e))
-            }
+            Func::Diff => self.diff(args, sp),
             Func::Eval => {
                 let var = self.var_name(self.arg(args, 1, sp)?, "the variable of eval")?;
-                let body = self.arg(args, 0, sp)?;
-                let fv = self.lower_bound(body, &var)?;
+                let (fv, inner) =
+                    self.lower_in_scope(self.arg(args, 0, sp)?, &[(var.clone(), Sign::Unknown)])?;
                 let a = self.lower(self.arg(args, 2, sp)?)?;
                 let b = self.lower(self.arg(args, 3, sp)?)?;
-                let x = atom::sym(&var);
-                let hi = subst_atom(&fv, x, &b, &s).map_err(|e| err(sp, e))?;
-                let lo = subst_atom(&fv, x, &a, &s).map_err(|e| err(sp, e))?;
+                self.carry(inner, &var, Scope::At(&[a.clone(), b.clone()]), sp)?;
+                let hi = self.at(&fv, &var, &b).map_err(|e| err(sp, e))?;
+                let lo = self.at(&fv, &var, &a).map_err(|e| err(sp, e))?;
                 hi.sub(&lo).map_err(|e| err(sp, e))
             }
             Func::Subs => {
                 let var = self.var_name(self.arg(args, 1, sp)?, "the variable of subs")?;
-                let body = self.arg(args, 0, sp)?;
-                let fv = self.lower_bound(body, &var)?;
+                let (fv, inner) =
+                    self.lower_in_scope(self.arg(args, 0, sp)?, &[(var.clone(), Sign::Unknown)])?;
                 let v = self.lower(self.arg(args, 2, sp)?)?;
-                subst_atom(&fv, atom::sym(&var), &v, &s).map_err(|e| err(sp, e))
+                self.carry(inner, &var, Scope::At(std::slice::from_ref(&v)), sp)?;
+                self.at(&fv, &var, &v).map_err(|e| err(sp, e))
             }
         }
     }
 
+    fn function(&mut self, f: Func, args: &[Expr], sp: Span) -> Result<Rat, LowerError> {
+        let a = self.arg(args, 0, sp)?;
+        let u = self.lower(a)?;
+        match f {
+            Func::Sqrt => self.note(&u, Need::NonNegative, a.span),
+            Func::Ln => self.note(&u, Need::Positive, a.span),
+            _ => {}
+        }
+        let s = self.signs.clone();
+        let r = match f {
+            Func::Sqrt => func::sqrt(&u, &s),
+            Func::Sin => trig::sin(&u),
+            Func::Cos => trig::cos(&u),
+            Func::Tan => {
+                let c = trig::cos(&u).map_err(|e| err(sp, e))?;
+                if c.is_zero() {
+                    return Err(msg(sp, "tan is undefined here: the cosine is exactly zero"));
+                }
+                self.note_divisor(&c, sp);
+                trig::tan(&u)
+            }
+            Func::Exp => func::exp(&u),
+            Func::Ln => func::ln(&u, &s),
+            _ => func::abs(&u, &s),
+        };
+        r.map_err(|e| err(sp, e))
+    }
+
+    fn diff(&mut self, args: &[Expr], sp: Span) -> Result<Rat, LowerError> {
+        let var = self.var_name(self.arg(args, 1, sp)?, "the variable of diff")?;
+        let n = match args.get(2) {
+            None => 1,
+            Some(ne) => {
+                let nv = self.lower(ne)?;
+                nv.as_constant()
+                    .filter(|q| q.is_integer() && !q.is_negative())
+                    .and_then(|q| q.to_integer().to_u32())
+                    .filter(|n| *n <= 1000)
+                    .ok_or_else(|| {
+                        msg(
+                            ne.span,
+                            "the order of diff must be a whole number from 0 to 1000",
+                        )
+                    })?
+            }
+        };
+        let body = self.arg(args, 0, sp)?;
+        let (fv, inner) = self.lower_in_scope(body, &[(var.clone(), Sign::Unknown)])?;
+        let x = atom::sym(&var);
+        let time = &self.env.time;
+        let is_time = |b: &str| time.contains(b);
+        let wrt = Wrt {
+            var: x,
+            time: (var == "t").then_some(&is_time as &dyn Fn(&str) -> bool),
+        };
+        let d = calculus::diff_n(&fv, &wrt, n, &self.signs_without(x)).map_err(|e| err(sp, e))?;
+        self.carry(inner, &var, Scope::Free, sp)?;
+        self.free_meaning(&d, &var).map_err(|e| err(sp, e))
+    }
+
+    /// The signs with `x` of unknown sign (it is a bound variable).
+    fn signs_without(&self, x: AtomId) -> Assumptions {
+        let mut s = self.signs.clone();
+        s.set(x, Sign::Unknown);
+        s
+    }
+
     fn int(&mut self, args: &[Expr], sp: Span) -> Result<Rat, LowerError> {
-        let s = self.env.signs.clone();
         let second = self.arg(args, 1, sp)?;
         let var = self.var_name(second, "the variable of integration")?;
         let body = self.arg(args, 0, sp)?;
@@ -332,23 +468,22 @@ impl<'a> Lowerer<'a> {
                 self.env.bodies.get(&var)
             };
             if let Some(b) = body_def {
-                let coords: Vec<String> = b
-                    .coords()
-                    .iter()
-                    .filter_map(|c| atom::sym_name(*c))
-                    .collect();
-                let n = coords.len();
-                self.bound.extend(coords);
-                let fv = self.lower(body);
-                self.bound.truncate(self.bound.len() - n);
-                let fv = fv?;
-                return b.integrate(&fv, &s).map_err(|e| int_err(body.span, e));
+                return self.int_body(b, body, sp);
             }
-            let fv = self.lower_bound(body, &var)?;
-            return calculus::antiderivative(&fv, atom::sym(&var), &s)
-                .map_err(|e| int_err(body.span, e));
+            let (fv, inner) = self.lower_in_scope(body, &[(var.clone(), Sign::Unknown)])?;
+            let x = atom::sym(&var);
+            let s = self.signs_without(x);
+            let r = if self.is_time_var(&var) {
+                let time = &self.env.time;
+                let is_time = |b: &str| time.contains(b);
+                calculus::time_antiderivative(&fv, x, &is_time, &s)
+            } else {
+                calculus::antiderivative(&fv, x, &s)
+            }
+            .map_err(|e| int_err(body.span, e))?;
+            self.carry(inner, &var, Scope::Free, sp)?;
+            return self.free_meaning(&r, &var).map_err(|e| err(sp, e));
         }
-        let fv = self.lower_bound(body, &var)?;
         let x = atom::sym(&var);
         let mut bounds = Vec::new();
         for i in [2, 3] {
@@ -362,10 +497,75 @@ impl<'a> Lowerer<'a> {
             }
             bounds.push(bv);
         }
-        let (Some(a), Some(b)) = (bounds.first(), bounds.get(1)) else {
+        let (Some(a), Some(b)) = (bounds.first().cloned(), bounds.get(1).cloned()) else {
             return Err(msg(sp, "missing bounds"));
         };
-        calculus::definite(&fv, x, a, b, &s).map_err(|e| int_err(body.span, e))
+        let sign = self.range_sign(&a, &b);
+        let (fv, inner) = self.lower_in_scope(body, &[(var.clone(), sign)])?;
+        self.carry(inner, &var, Scope::Region, sp)?;
+        let mut s = self.signs.clone();
+        s.set(x, sign);
+        if self.is_time_var(&var) {
+            let time = &self.env.time;
+            let is_time = |b: &str| time.contains(b);
+            let big_f = calculus::time_antiderivative(&fv, x, &is_time, &s)
+                .map_err(|e| int_err(body.span, e))?;
+            let hi = self.at(&big_f, &var, &b).map_err(|e| err(sp, e))?;
+            let lo = self.at(&big_f, &var, &a).map_err(|e| err(sp, e))?;
+            return hi.sub(&lo).map_err(|e| err(sp, e));
+        }
+        let big_f = calculus::antiderivative(&fv, x, &s).map_err(|e| int_err(body.span, e))?;
+        let hi = subst_atom(&big_f, x, &b, self.signs()).map_err(|e| err(sp, e))?;
+        let lo = subst_atom(&big_f, x, &a, self.signs()).map_err(|e| err(sp, e))?;
+        hi.sub(&lo).map_err(|e| err(sp, e))
+    }
+
+    /// `int(f, B)`: the coordinates are bound, each with the sign its range gives.
+    fn int_body(&mut self, b: &Body, body: &Expr, sp: Span) -> Result<Rat, LowerError> {
+        let vars = self.coordinate_signs(b);
+        let (fv, inner) = self.lower_in_scope(body, &vars)?;
+        // Conditions that mention a coordinate hold almost everywhere or fail (see carry).
+        let mut rest = inner;
+        for (name, _) in &vars {
+            let x = atom::sym(name);
+            let (here, other): (Vec<Divisor>, Vec<Divisor>) =
+                rest.into_iter().partition(|d| depends_on(&d.value, x));
+            self.carry(here, name, Scope::Region, sp)?;
+            rest = other;
+        }
+        for d in rest {
+            self.note(&d.value, d.need, d.span);
+        }
+        let mut s = self.signs.clone();
+        for (name, sign) in &vars {
+            s.set(atom::sym(name), *sign);
+        }
+        b.integrate(&fv, &s).map_err(|e| int_err(body.span, e))
+    }
+
+    /// Each coordinate of a body with the sign its range gives (abstract bodies: none).
+    fn coordinate_signs(&mut self, b: &Body) -> Vec<(String, Sign)> {
+        let mut out = Vec::new();
+        match b {
+            Body::Concrete { ranges, .. } => {
+                let mut saved = Vec::new();
+                for (v, lo, hi) in ranges {
+                    let sign = self.range_sign(lo, hi);
+                    saved.push((*v, self.signs.declared(*v)));
+                    self.signs.set(*v, sign);
+                    if let Some(n) = atom::sym_name(*v) {
+                        out.push((n, sign));
+                    }
+                }
+                for (v, s) in saved.into_iter().rev() {
+                    self.signs.set(v, s);
+                }
+            }
+            Body::Abstract { coords, .. } => {
+                out.extend(coords.iter().map(|c| (c.0.clone(), Sign::Unknown)));
+            }
+        }
+        out
     }
 }
 
@@ -397,12 +597,16 @@ pub fn build_body(
         BodyDef::Concrete { dm, ranges } => {
             let names: Vec<String> = ranges.iter().map(|r| r.var.name.clone()).collect();
             let mut out_ranges = Vec::new();
+            // Coordinates are fresh: each knows only the sign its range gives, whatever
+            // a declared symbol of the same name means.
             for (i, r) in ranges.iter().enumerate() {
                 lw.bound = names[..i].to_vec();
                 lw.bound.push(r.var.name.clone());
+                let v = atom::sym(&r.var.name);
+                lw.signs.set(v, Sign::Unknown);
                 let from = lw.lower(&r.from)?;
                 let to = lw.lower(&r.to)?;
-                let v = atom::sym(&r.var.name);
+                let sign = lw.range_sign(&from, &to);
                 for (e, val) in [(&r.from, &from), (&r.to, &to)] {
                     if depends_on(val, v) {
                         return Err(msg(
@@ -422,6 +626,7 @@ pub fn build_body(
                         }
                     }
                 }
+                lw.signs.set(v, sign);
                 out_ranges.push((v, from, to));
             }
             lw.bound = names.clone();

@@ -93,6 +93,14 @@ fn diff_atom_uncached(
     let two = Q::from_integer(2.into());
     Ok(match &*at {
         Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => Rat::zero(),
+        // d/dv x(u) = x'(u) · du/dv
+        Atom::At(name, u) => {
+            let du = diff_rat(u, w, s, memo)?;
+            if du.is_zero() {
+                return Ok(du);
+            }
+            Rat::atom(atom::at(&format!("{name}'"), u)).mul(&du)?
+        }
         Atom::Sqrt(p) => {
             let dp = diff_poly(p, w, s, memo)?;
             if dp.is_zero() {

@@ -14,6 +14,9 @@ use std::fmt;
 pub enum IntError {
     /// The integrand is outside what rigor integrates; the text says what it is.
     Unsupported(String),
+    /// An integral over time of a quantity that depends on time in a way rigor has no
+    /// antiderivative for; the text names the term.
+    Time(String),
     /// An error of the normal form.
     Norm(NormError),
 }
@@ -36,6 +39,10 @@ impl fmt::Display for IntError {
             IntError::Unsupported(s) => write!(
                 f,
                 "{s}; rigor integrates polynomials in the variable, times at most a sin, cos or exp of an argument linear in it"
+            ),
+            IntError::Time(s) => write!(
+                f,
+                "{s}; over t, rigor integrates c·x' to c·x and c·x^n·x' to c·x^(n+1)/(n+1) for a `time` symbol x and its derivatives, and never treats a `time` symbol as a constant"
             ),
             IntError::Norm(e) => write!(f, "{e}"),
         }

@@ -3,7 +3,9 @@
 pub mod body;
 pub mod diff;
 pub mod integrate;
+pub mod time;
 
 pub use body::Body;
 pub use diff::{diff, diff_n, Wrt};
 pub use integrate::{antiderivative, definite, IntError};
+pub use time::{at_instant, time_antiderivative};

@@ -15,7 +15,9 @@ use crate::lower::{build_body, sign_of_decl, Env, LowerError, Lowerer};
 use crate::normal::atom::{self, AtomId};
 use crate::normal::print::plain;
 use crate::normal::{Rat, Sign, Q};
-use crate::syntax::ast::{Assign, By, Chain, Expr, ExprKind, File, Item, RelOp, Span, StmtKind};
+use crate::syntax::ast::{
+    Assign, BinOp, By, Chain, Expr, ExprKind, File, Item, RelOp, Span, StmtKind,
+};
 use num_bigint::BigInt;
 use num_traits::{One, Signed};
 use std::collections::{HashMap, HashSet};
@@ -47,6 +49,9 @@ pub struct Checker<'l, 'o> {
     timed_out: bool,
     /// Byte offset of the start of every line, for line numbers.
     line_starts: Vec<usize>,
+    /// The conditions the last verified link holds under (its own and those of the
+    /// facts it used): a claim that becomes a fact carries them.
+    conditions: Vec<(Rat, Need)>,
 }
 
 impl<'l, 'o> Checker<'l, 'o> {
@@ -64,6 +69,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             body_coords: HashMap::new(),
             timed_out: false,
             line_starts: Vec::new(),
+            conditions: Vec::new(),
         }
     }
 
@@ -358,9 +364,7 @@ impl<'l, 'o> Checker<'l, 'o> {
                     prev = rhs;
                     continue;
                 }
-                if !value.atoms().iter().any(|a| self.is_unknown(*a))
-                    && self.env.signs.rat(&value).is_nonzero()
-                {
+                if sign_of(&value, &self.env.signs).is_nonzero() {
                     self.report.diagnostics.push(Diagnostic::error(
                         "E0306",
                         format!(
@@ -375,8 +379,11 @@ impl<'l, 'o> Checker<'l, 'o> {
                 }
                 let mut derivs = vec![value.clone()];
                 if constraint {
+                    // A constraint holds at all times: its unknowns are functions of time
+                    // too (F' is a new unknown), never constants.
                     let time = self.env.time.clone();
-                    let is_time = |b: &str| time.contains(b);
+                    let unknowns = self.scope.unknowns.clone();
+                    let is_time = |b: &str| time.contains(b) || unknowns.contains(b);
                     let wrt = Wrt {
                         var: atom::sym("t"),
                         time: Some(&is_time),
@@ -408,7 +415,7 @@ impl<'l, 'o> Checker<'l, 'o> {
     }
 
     fn is_unknown(&self, a: AtomId) -> bool {
-        atom::sym_name(a).is_some_and(|n| self.scope.is_unknown(&n))
+        unknown_atom(&self.scope, a)
     }
 
     fn import(
@@ -429,6 +436,15 @@ impl<'l, 'o> Checker<'l, 'o> {
         let mut subs: Vec<(AtomId, Rat)> = Vec::new();
         for a in with {
             let name = &a.name.name;
+            if !exports.signs.contains_key(name) && !exports.unknowns.iter().any(|u| u == name) {
+                self.error(
+                    "E0208",
+                    format!("`with` sets `{name}`, which is not a symbol of \"{path}\""),
+                    a.name.span,
+                    "only the symbols declared there can be instantiated",
+                );
+                return;
+            }
             let base = name.trim_end_matches('\'');
             if exports.unknowns.iter().any(|u| u == name || u == base) {
                 self.error(
@@ -461,18 +477,50 @@ impl<'l, 'o> Checker<'l, 'o> {
                 continue;
             };
             let label = self.new_label(&Some(l.clone()));
-            for eq in eqs {
-                let v = if subs.is_empty() {
-                    eq.clone()
-                } else {
-                    match crate::normal::subst::Subst::new(&map, &self.env.signs).rat(eq) {
-                        Ok(r) => r,
-                        Err(e) => {
-                            self.error("E0101", e.to_string(), l.span, "");
-                            return;
-                        }
+            for (eq, conds) in eqs {
+                let inst = |r: &Rat| {
+                    if subs.is_empty() {
+                        Ok(r.clone())
+                    } else {
+                        crate::normal::subst::Subst::new(&map, &self.env.signs).rat(r)
                     }
                 };
+                let v = match inst(eq) {
+                    Ok(r) => r,
+                    Err(e) => {
+                        self.error("E0101", e.to_string(), l.span, "");
+                        return;
+                    }
+                };
+                // The conditions it was derived under travel with it; one that the
+                // instantiation makes false makes the import no use.
+                let mut divisors = Vec::new();
+                for (c0, need) in conds {
+                    let c = match inst(c0) {
+                        Ok(c) => c,
+                        Err(_) => Rat::zero(),
+                    };
+                    let sign = sign_of(&c, &self.env.signs);
+                    let (fails, what) = match need {
+                        Need::NonZero => (c.is_zero(), "!= 0"),
+                        Need::Positive => (sign.is_nonpos(), "> 0"),
+                        Need::NonNegative => (sign == Sign::Neg, ">= 0"),
+                    };
+                    if fails {
+                        self.error(
+                            "E0305",
+                            format!(
+                                "[{}] from \"{path}\" holds only where {} {what}, which is false here",
+                                l.name,
+                                plain(c0)
+                            ),
+                            l.span,
+                            "the instantiation breaks a condition the claim was derived under",
+                        );
+                        return;
+                    }
+                    divisors.push((c, *need));
+                }
                 // Symbols left as they are must carry at least the sign the source assumed.
                 let mut syms = Vec::new();
                 crate::decide::symbols_in(&v, &mut syms);
@@ -521,7 +569,7 @@ impl<'l, 'o> Checker<'l, 'o> {
                         value: v,
                         name: format!("[{}]", l.name),
                     },
-                    divisors: Vec::new(),
+                    divisors,
                 });
             }
         }
@@ -558,6 +606,15 @@ impl<'l, 'o> Checker<'l, 'o> {
             let name = &a.name.name;
             if !self.scope.is_declared(name) {
                 self.declared(&Expr::new(ExprKind::Sym(name.clone()), a.name.span));
+                return self.push_error_claim(claim, chain);
+            }
+            if self.scope.names.get(name) == Some(&Decl::Def) {
+                self.error(
+                    "E0207",
+                    format!("`where` cannot set `{name}`: it is defined by `let`"),
+                    a.name.span,
+                    "set the symbols its definition is made of instead",
+                );
                 return self.push_error_claim(claim, chain);
             }
             if self.scope.is_unknown(name) {
@@ -632,8 +689,15 @@ impl<'l, 'o> Checker<'l, 'o> {
             if status.is_verified() && link.op == RelOp::Eq {
                 if let Ok(v) = prev.sub(&rhs) {
                     if subs.is_empty() {
-                        // The step's own conditions travel with the fact it becomes.
-                        new_facts.push((v, all_divs.clone()));
+                        // The step's conditions (its own, the elimination's divisors and
+                        // those of the facts it used) travel with the fact it becomes.
+                        let mut conds = all_divs.clone();
+                        for c in std::mem::take(&mut self.conditions) {
+                            if !conds.iter().any(|d| d.0 == c.0 && d.1 == c.1) {
+                                conds.push(c);
+                            }
+                        }
+                        new_facts.push((v, conds));
                     }
                 }
             }
@@ -662,8 +726,7 @@ impl<'l, 'o> Checker<'l, 'o> {
         }
         if let Some(l) = &label {
             if claim.verified() && !new_facts.is_empty() {
-                let eqs = new_facts.into_iter().map(|f| f.0).collect();
-                self.exports.claims.insert(l.clone(), eqs);
+                self.exports.claims.insert(l.clone(), new_facts);
             }
         }
         self.report.claims.push(claim);
@@ -753,6 +816,7 @@ impl<'l, 'o> Checker<'l, 'o> {
         divisors: &[(Rat, crate::lower::Need)],
         deadline: Instant,
     ) -> Result<Status, Diagnostic> {
+        self.conditions.clear();
         let signs = self.env.signs.clone();
         // All `where` substitutions at once (simultaneous, not one after another).
         let map = |a: AtomId| subs.iter().find(|s| s.0 == a).map(|s| s.1.clone());
@@ -799,18 +863,16 @@ impl<'l, 'o> Checker<'l, 'o> {
             return Ok(Status::Error);
         };
         let mut used_facts = Vec::new();
-        let mut fact_divs = Vec::new();
         for k in &facts {
             if let Ok(v) = apply(&k.fact.value) {
                 used_facts.push(Fact {
                     value: v,
                     name: k.fact.name.clone(),
                 });
-                fact_divs.extend(k.divisors.iter().cloned());
             }
         }
         let scope = self.scope.clone();
-        let is_unknown = |x: AtomId| atom::sym_name(x).is_some_and(|n| scope.is_unknown(&n));
+        let is_unknown = |x: AtomId| unknown_atom(&scope, x);
         let elim = if diff.is_zero() {
             None
         } else {
@@ -829,6 +891,18 @@ impl<'l, 'o> Checker<'l, 'o> {
             )
         };
         let steps = elim.as_ref().map_or(&[][..], |e| &e.steps[..]);
+        // The conditions of the facts this link used (a fact derived assuming c != 0
+        // holds only where c != 0).
+        let used_names: Vec<&str> = steps
+            .iter()
+            .map(|s| s.fact.as_str())
+            .chain(elim.as_ref().and_then(|e| e.multiple_of.as_deref()))
+            .collect();
+        let fact_divs: Vec<(Rat, Need)> = facts
+            .iter()
+            .filter(|k| used_names.contains(&k.fact.name.as_str()))
+            .flat_map(|k| k.divisors.iter().cloned())
+            .collect();
         let reduce = |r: &Rat| apply_steps(r, steps, &signs);
         let (ra, rb) = match (reduce(&a), reduce(&b)) {
             (Ok(x), Ok(y)) => (x, y),
@@ -902,6 +976,14 @@ impl<'l, 'o> Checker<'l, 'o> {
             let reduced = reduce(d).unwrap_or_else(|_| d.clone());
             let text = match need {
                 Need::NonZero => {
+                    if d.is_zero() {
+                        return Err(Diagnostic::error(
+                            "E0305",
+                            "this step divides by zero at the value substituted (in `subs`, `eval` or `where`)",
+                            span,
+                            "division by zero",
+                        ));
+                    }
                     if reduced.is_zero() || zero_by_facts(&reduced, &all_scope, &signs) {
                         return Err(Diagnostic::error(
                             "E0305",
@@ -959,11 +1041,30 @@ impl<'l, 'o> Checker<'l, 'o> {
         match link.op {
             RelOp::Eq => {
                 if reduced_diff.is_zero() {
+                    self.conditions = all_divs;
                     return Ok(Status::Verified {
                         how: how_eq(&via),
                         side_conditions: conditions,
                     });
                 }
+                // Undetermined unknowns are explained by `not_equal`; nothing is refuted then.
+                let stuck = elim.as_ref().is_some_and(|e| !e.stuck.is_empty());
+                let (ra, rb) = if stuck || timed_out {
+                    (ra, rb)
+                } else {
+                    match self.unrefuted(
+                        (&a, &b),
+                        &diff,
+                        (&used_facts, &all_scope),
+                        matches!(by, Some(By::Labels(_))),
+                        span,
+                        deadline,
+                    ) {
+                        Err(d) => return Err(d),
+                        Ok(Some(sides)) => sides,
+                        Ok(None) => (ra, rb),
+                    }
+                };
                 Err(self.not_equal(
                     &a,
                     &b,
@@ -1065,6 +1166,103 @@ impl<'l, 'o> Checker<'l, 'o> {
                 self.approx(&va, &vb, &link.rhs, span, conditions)
             }
         }
+    }
+
+    /// A failing `=` step may be called false only if it fails in every situation the
+    /// signs and all the facts in scope allow. When the facts could make it hold, or
+    /// still constrain the quantities its difference is made of, the answer is "not
+    /// verified" and this says why; otherwise the two sides reduced by every fact in
+    /// scope, for the refutation to work on.
+    fn unrefuted(
+        &self,
+        sides: (&Rat, &Rat),
+        diff: &Rat,
+        (cited, all): (&[Fact], &[Fact]),
+        restricted: bool,
+        span: Span,
+        deadline: Instant,
+    ) -> Result<Option<(Rat, Rat)>, Diagnostic> {
+        let signs = &self.env.signs;
+        let scope = &self.scope;
+        let is_unknown = |x: AtomId| unknown_atom(scope, x);
+        let elim = |facts: &[Fact], params: bool| {
+            super::solve::eliminate_all(diff, facts, &is_unknown, signs, Some(deadline), params)
+                .ok()
+        };
+        let not_verified = |headline: String, notes: Vec<String>| {
+            let mut d = Diagnostic::error("E0302", headline, span, "not verified");
+            d.notes = notes;
+            d
+        };
+        let Some(full) = elim(all, true) else {
+            return Ok(None);
+        };
+        if restricted
+            && (full.0.is_zero() || elim(cited, true).map(|r| r.0) != Some(full.0.clone()))
+        {
+            let why = if full.0.is_zero() {
+                "it follows from the facts in scope, but not from those cited"
+            } else {
+                "it does not follow from the facts cited, and the other facts in scope bear on it"
+            };
+            return Err(not_verified(
+                format!("not verified from the facts cited: {why}"),
+                vec!["cite every fact the step needs in `by [..]`, or drop `by [..]`".into()],
+            ));
+        }
+        if full.0.is_zero() {
+            return Err(not_verified(
+                "not verified: rigor could not settle this step with the facts in scope".into(),
+                Vec::new(),
+            ));
+        }
+        // Unknowns only first (the sides read as written); parameters fixed by the facts
+        // only when the facts still tie the difference's quantities.
+        let mut tied = Vec::new();
+        for (target, steps, left) in [elim(all, false), Some(full)].into_iter().flatten() {
+            tied = tied_atoms(&target, &left, &is_unknown, signs);
+            if tied.is_empty() {
+                let reduce = |r: &Rat| apply_steps(r, &steps, signs);
+                return Ok(match (reduce(sides.0), reduce(sides.1)) {
+                    (Ok(x), Ok(y)) => Some((x, y)),
+                    _ => None,
+                });
+            }
+            if target.is_zero() {
+                break;
+            }
+        }
+        let Some((target, _, left)) = elim(all, true) else {
+            return Ok(None);
+        };
+        let names: Vec<String> = tied
+            .iter()
+            .map(|a| crate::normal::print::atom_plain(&atom::get(*a)))
+            .collect();
+        let mut which: Vec<&str> = left
+            .iter()
+            .filter(|f| {
+                tied.iter()
+                    .any(|a| crate::normal::subst::depends_on(&f.value, *a))
+            })
+            .map(|f| f.name.as_str())
+            .collect();
+        which.dedup();
+        let them = if names.len() == 1 { "it" } else { "them" };
+        Err(not_verified(
+            format!(
+                "not verified: the facts in scope ({}) relate {}, so rigor cannot show that this step fails",
+                which.join(", "),
+                names.join(", ")
+            ),
+            vec![
+                format!("after using the facts, left − right = {}", short(&plain(&target))),
+                format!(
+                    "if the facts determine {}, declare {them} with `unknowns` so that rigor solves for {them}",
+                    names.join(", ")
+                ),
+            ],
+        ))
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -1219,13 +1417,9 @@ impl<'l, 'o> Checker<'l, 'o> {
         span: Span,
         conditions: Vec<String>,
     ) -> Result<Status, Diagnostic> {
-        let Some((c, ulp)) = literal_precision(rhs, &self.report.source) else {
-            return Err(Diagnostic::error(
-                "E0304",
-                "`~=` needs a decimal number on its right side (its precision says how close)",
-                span,
-                "",
-            ));
+        let (c, ulp) = match literal_precision(rhs, &self.report.source) {
+            Ok(x) => x,
+            Err(why) => return Err(Diagnostic::error("E0304", why, span, "")),
         };
         let Ok(ratio) = a.div(b) else {
             return Err(Diagnostic::error(
@@ -1285,6 +1479,37 @@ impl<'l, 'o> Checker<'l, 'o> {
                 "undecided",
             )),
         }
+    }
+}
+
+/// The quantities of `target` (symbols, moments) that the facts left over still tie.
+fn tied_atoms(
+    target: &Rat,
+    left: &[Fact],
+    is_unknown: &dyn Fn(AtomId) -> bool,
+    signs: &crate::normal::Assumptions,
+) -> Vec<AtomId> {
+    let constrained = super::solve::constrained_atoms(left, is_unknown, signs);
+    let mut mine = Vec::new();
+    crate::decide::symbols_in(target, &mut mine);
+    mine.extend(
+        target
+            .atoms()
+            .into_iter()
+            .filter(|a| matches!(&*atom::get(*a), crate::normal::Atom::Moment(..))),
+    );
+    mine.into_iter()
+        .filter(|a| constrained.contains(a) && !is_unknown(*a))
+        .collect()
+}
+
+/// Whether atom `a` is an unknown: declared so, a `time` symbol or derivative, or one of
+/// those at an instant (`x'(T)`).
+fn unknown_atom(scope: &Scope, a: AtomId) -> bool {
+    match &*atom::get(a) {
+        crate::normal::Atom::Sym(n) => scope.is_unknown(n),
+        crate::normal::Atom::At(n, _) => scope.is_unknown(n),
+        _ => false,
     }
 }
 
@@ -1502,17 +1727,62 @@ fn violation(a: &Rat, b: &Rat, op: RelOp, signs: &crate::normal::Assumptions) ->
     })
 }
 
-/// The first decimal literal in `e` and the unit of its last written digit.
-fn literal_precision(e: &Expr, src: &str) -> Option<(Q, Q)> {
+/// The one number written on the right side of `~=` and the unit of its last written
+/// digit: the side must be that number times symbols (`0.71 R`, `-9.8`, `0.6 m L^2`);
+/// anything else is refused rather than guessed at (`2 * 0.30 R`, `1/0.3`).
+fn literal_precision(e: &Expr, src: &str) -> Result<(Q, Q), String> {
+    let mut found = Vec::new();
+    let shape = number_times_symbols(e, src, false, false, &mut found);
+    match (shape, found.as_slice()) {
+        (true, [(q, ulp, false)]) => Ok((q.clone(), ulp.clone())),
+        _ => Err(
+            "the right side of `~=` must be one written number times symbols (`0.71 R`), whose precision says how close; write the number out (`0.60 R`, not `2 * 0.30 R`)"
+                .into(),
+        ),
+    }
+}
+
+/// Whether `e` is a product or quotient of symbols and numbers; collects each number
+/// with its precision and whether it divides.
+fn number_times_symbols(
+    e: &Expr,
+    src: &str,
+    neg: bool,
+    divides: bool,
+    found: &mut Vec<(Q, Q, bool)>,
+) -> bool {
     match &e.kind {
         ExprKind::Num(q) => {
-            let text = src.get(e.span.start..e.span.end)?;
-            Some((q.clone(), ulp_of(text)?))
+            let Some(ulp) = src.get(e.span.start..e.span.end).and_then(ulp_of) else {
+                return false;
+            };
+            found.push((if neg { -q.clone() } else { q.clone() }, ulp, divides));
+            true
         }
-        ExprKind::Neg(a) => literal_precision(a, src).map(|(q, u)| (-q, u)),
-        ExprKind::Bin(_, a, b) => literal_precision(a, src).or_else(|| literal_precision(b, src)),
-        ExprKind::Call(_, args) => args.iter().find_map(|a| literal_precision(a, src)),
-        _ => None,
+        ExprKind::Sym(_) | ExprKind::Pi => true,
+        ExprKind::Neg(a) => number_times_symbols(a, src, !neg, divides, found),
+        ExprKind::Bin(BinOp::Mul, a, b) => {
+            number_times_symbols(a, src, neg, divides, found)
+                && number_times_symbols(b, src, false, divides, found)
+        }
+        ExprKind::Bin(BinOp::Div, a, b) => {
+            number_times_symbols(a, src, neg, divides, found)
+                && number_times_symbols(b, src, false, !divides, found)
+        }
+        // A power or a function of symbols only (`R^2`, `sqrt(g/L)`).
+        ExprKind::Bin(BinOp::Pow, base, _) => !has_number(base),
+        ExprKind::Call(_, args) => !args.iter().any(has_number),
+        ExprKind::Bin(..) => false,
+    }
+}
+
+fn has_number(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Num(_) => true,
+        ExprKind::Sym(_) | ExprKind::Pi => false,
+        ExprKind::Neg(a) => has_number(a),
+        ExprKind::Bin(_, a, b) => has_number(a) || has_number(b),
+        ExprKind::Call(_, args) => args.iter().any(has_number),
     }
 }
 

@@ -35,8 +35,9 @@ impl Default for Options {
 /// What an imported file offers: the verified claims by label.
 #[derive(Clone, Debug, Default)]
 pub struct Exports {
-    /// Label → the equations `lhs − rhs = 0` of that claim.
-    pub claims: HashMap<String, Vec<Rat>>,
+    /// Label → the equations `lhs − rhs = 0` of that claim, each with the conditions it
+    /// was derived under (divisors nonzero, arguments of `ln` positive, radicands ≥ 0).
+    pub claims: HashMap<String, Vec<(Rat, Vec<(Rat, crate::lower::Need)>)>>,
     /// The signs the file declares for its symbols (its claims hold under them).
     pub signs: HashMap<String, crate::normal::Sign>,
     /// The file's unknowns (and `time` symbols): they cannot be instantiated.

@@ -44,8 +44,9 @@ impl Scope {
         if self.unknowns.contains(name) {
             return true;
         }
+        // Derivatives of unknowns (from a differentiated constraint) are unknowns too.
         let base = name.trim_end_matches('\'');
-        self.names.get(base) == Some(&Decl::Time)
+        self.names.get(base) == Some(&Decl::Time) || self.unknowns.contains(base)
     }
 
     /// The declared name closest to `name`, if reasonably close.

@@ -116,6 +116,7 @@ fn eliminate_with(
     let mut steps = Vec::new();
     let mut contradiction = None;
     let mut timed_out = false;
+    let mut multiple = None;
     loop {
         if deadline.is_some_and(|d| Instant::now() > d) {
             timed_out = true;
@@ -140,24 +141,33 @@ fn eliminate_with(
         if unknowns.is_empty() {
             break;
         }
+        // A multiple of a fact (by a factor with a denominator the signs make nonzero)
+        // is zero by that fact: no division, no condition.
+        if let Some(f) = facts.iter().find(|f| multiple_of(&target, &f.value, signs)) {
+            multiple = Some(f.name.clone());
+            target = Rat::zero();
+            break;
+        }
         // The best (fact, unknown) pair: no division by a quantity of unknown sign if
         // possible, then the fact with fewest unknowns.
-        let mut best: Option<((bool, usize), usize, AtomId, Solution)> = None;
-        for u in &unknowns {
-            for (i, f) in facts.iter().enumerate() {
-                let n_unknowns = f.value.atoms().iter().filter(|a| is_unknown(**a)).count();
-                if best.as_ref().is_some_and(|b| b.0 <= (false, n_unknowns)) {
-                    continue;
-                }
-                if let Some(sol) = solve_for(&f.value, *u, signs)? {
-                    let rank = (sol.divisor.is_some(), n_unknowns);
-                    if strict && rank.0 {
-                        continue;
-                    }
-                    if best.as_ref().is_none_or(|b| rank < b.0) {
-                        best = Some((rank, i, *u, sol));
+        let mut best = best_pair(&unknowns, &facts, is_unknown, signs, strict)?;
+        if best.as_ref().is_none_or(|b| b.0 .0) {
+            // Every way to remove an unknown of the target divides: first remove another
+            // unknown of the facts without dividing, if one can be.
+            let mut others: Vec<AtomId> = Vec::new();
+            let relevant = facts
+                .iter()
+                .filter(|f| unknowns.iter().any(|u| f.value.atoms().contains(u)));
+            for f in relevant {
+                for a in f.value.atoms() {
+                    if is_unknown(a) && !unknowns.contains(&a) && !others.contains(&a) {
+                        others.push(a);
                     }
                 }
+            }
+            others.sort_by(|a, b| atom::cmp_atoms(*a, *b));
+            if let Some(b) = best_pair(&others, &facts, is_unknown, signs, true)? {
+                best = Some(b);
             }
         }
         let Some((_, i, u, sol)) = best else {
@@ -207,8 +217,55 @@ fn eliminate_with(
         contradiction,
         stuck,
         timed_out,
-        multiple_of: None,
+        multiple_of: multiple,
     })
+}
+
+/// Whether `target` is `r · fact` for an `r` whose denominator the signs make nonzero.
+fn multiple_of(target: &Rat, fact: &Rat, signs: &Assumptions) -> bool {
+    if fact.is_zero() || target.is_zero() {
+        return false;
+    }
+    // Cheap filter: every atom of the fact's numerator must occur in the target.
+    let atoms = target.atoms();
+    if !fact.num().atoms().iter().all(|a| atoms.contains(a)) {
+        return false;
+    }
+    target
+        .div(fact)
+        .is_ok_and(|r| r.den().atoms().is_empty() || signs.poly(r.den()).is_nonzero())
+}
+
+type Pair = ((bool, usize), usize, AtomId, Solution);
+
+/// The best (fact, unknown) pair to solve: no division by a quantity of unknown sign if
+/// possible (only such pairs when `strict`), then the fact with fewest unknowns.
+fn best_pair(
+    unknowns: &[AtomId],
+    facts: &[Fact],
+    is_unknown: &dyn Fn(AtomId) -> bool,
+    signs: &Assumptions,
+    strict: bool,
+) -> Result<Option<Pair>, NormError> {
+    let mut best: Option<Pair> = None;
+    for u in unknowns {
+        for (i, f) in facts.iter().enumerate() {
+            let n_unknowns = f.value.atoms().iter().filter(|a| is_unknown(**a)).count();
+            if best.as_ref().is_some_and(|b| b.0 <= (false, n_unknowns)) {
+                continue;
+            }
+            if let Some(sol) = solve_for(&f.value, *u, signs)? {
+                let rank = (sol.divisor.is_some(), n_unknowns);
+                if strict && rank.0 {
+                    continue;
+                }
+                if best.as_ref().is_none_or(|b| rank < b.0) {
+                    best = Some((rank, i, *u, sol));
+                }
+            }
+        }
+    }
+    Ok(best)
 }
 
 /// A fact that gives `u` only through `u^n` (n ≥ 2) while `u` is not declared positive
@@ -243,7 +300,7 @@ fn unknowns_within(r: &Rat, is_unknown: &dyn Fn(AtomId) -> bool, out: &mut Vec<A
             continue;
         }
         match &*atom::get(a) {
-            Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => {}
+            Atom::Sym(_) | Atom::Pi | Atom::Moment(..) | Atom::At(..) => {}
             Atom::Sqrt(p) | Atom::Root(p, _) | Atom::Abs(p) => poly(p, out),
             Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) => {
                 unknowns_within(u, is_unknown, out)
@@ -325,19 +382,71 @@ pub fn reduce_fully(
 }
 
 /// Whether `d` is zero by the facts, shown by eliminating atoms only with coefficients
-/// that are provably nonzero (so the conclusion holds without side conditions).
+/// that are provably nonzero (so the conclusion holds without side conditions), or by a
+/// simple nonlinear consequence of one fact (`c^2 = 0`, `c F = 0` with `F > 0`).
 pub fn zero_by_facts(d: &Rat, facts: &[Fact], signs: &Assumptions) -> bool {
     if d.is_zero() {
         return true;
     }
+    if facts.iter().any(|f| forces_zero(&f.value, d, signs)) {
+        return true;
+    }
     let any_atom = |a: AtomId| !matches!(&*atom::get(a), crate::normal::Atom::Pi);
-    eliminate_with(d, facts, &any_atom, signs, None, true).is_ok_and(|e| e.target.is_zero())
+    let Ok(e) = eliminate_with(d, facts, &any_atom, signs, None, true) else {
+        return false;
+    };
+    if e.target.is_zero() {
+        return true;
+    }
+    // The facts left after the elimination may still force the reduced divisor to zero.
+    facts.iter().any(|f| {
+        apply_steps(&f.value, &e.steps, signs)
+            .is_ok_and(|v| !v.is_zero() && forces_zero(&v, &e.target, signs))
+    })
 }
 
-/// A fact that the others make false (a nonzero quantity equal to zero), found by
-/// eliminating atoms with provably nonzero coefficients only.
+/// Whether the fact `value = 0` forces `d = 0`: the fact's numerator is a power of a
+/// common factor `g` of `d`'s numerator times something the signs make nonzero, so `g = 0`
+/// (and `g` divides `d`).
+fn forces_zero(value: &Rat, d: &Rat, signs: &Assumptions) -> bool {
+    let (n, dn) = (value.num(), d.num());
+    if n.is_zero() || dn.is_zero() {
+        return false;
+    }
+    let Ok(g) = crate::normal::gcd::gcd(n, dn) else {
+        return false;
+    };
+    if g.atoms().is_empty() {
+        return false;
+    }
+    let mut u = n.clone();
+    for _ in 0..64 {
+        match crate::normal::gcd::div_exact(&u, &g) {
+            Ok(Some(q)) => u = q,
+            _ => break,
+        }
+    }
+    u.atoms().is_empty() || signs.poly(&u).is_nonzero()
+}
+
+/// Whether a symbol declared with sign `declared` can take a value of sign `value`.
+fn sign_compatible(declared: Sign, value: Sign, is_zero: bool) -> bool {
+    match declared {
+        Sign::Pos => !is_zero && !value.is_nonpos(),
+        Sign::NonNeg => value != Sign::Neg,
+        Sign::NonZero | Sign::Neg => !is_zero && !(declared == Sign::Neg && value.is_nonneg()),
+        Sign::NonPos => value != Sign::Pos,
+        _ => true,
+    }
+}
+
+/// A fact that the others make false (a nonzero quantity equal to zero, or a value for
+/// a symbol against its declared sign), found by eliminating atoms with provably nonzero
+/// coefficients only. The answer does not depend on the order of the symbols' names:
+/// every solved symbol's final value is checked against its declared sign.
 pub fn contradiction(facts: &[Fact], signs: &Assumptions) -> Option<String> {
     let mut fs: Vec<Fact> = facts.to_vec();
+    let mut solved: Vec<(AtomId, Rat, String)> = Vec::new();
     for _ in 0..=facts.len() {
         if let Some(f) = fs.iter().find(|f| signs.rat(&f.value).is_nonzero()) {
             return Some(f.name.clone());
@@ -358,8 +467,10 @@ pub fn contradiction(facts: &[Fact], signs: &Assumptions) -> Option<String> {
                 }
             }
         }
-        let (i, u, value) = pick?;
-        fs.remove(i);
+        let Some((i, u, value)) = pick else {
+            break;
+        };
+        let fact = fs.remove(i);
         let mut next = Vec::with_capacity(fs.len());
         for f in fs {
             match subst_atom(&f.value, u, &value, signs) {
@@ -371,8 +482,127 @@ pub fn contradiction(facts: &[Fact], signs: &Assumptions) -> Option<String> {
             }
         }
         fs = next;
+        for s in &mut solved {
+            if let Ok(v) = subst_atom(&s.1, u, &value, signs) {
+                s.1 = v;
+            }
+        }
+        solved.push((u, value, fact.name));
     }
-    None
+    if let Some(f) = fs.iter().find(|f| signs.rat(&f.value).is_nonzero()) {
+        return Some(f.name.clone());
+    }
+    solved.into_iter().find_map(|(u, v, name)| {
+        (!sign_compatible(signs.declared(u), signs.rat(&v), v.is_zero())).then_some(name)
+    })
+}
+
+/// The atoms that facts left over after an elimination still constrain. The facts are
+/// solved, one after another, for unknowns that occur linearly with a coefficient the
+/// signs make nonzero (so any values of the other quantities can be met by choosing the
+/// unknowns); the atoms of every fact that cannot be satisfied that way are constrained.
+/// A step may be called false only where its difference avoids these atoms.
+pub fn constrained_atoms(
+    facts: &[Fact],
+    is_unknown: &dyn Fn(AtomId) -> bool,
+    signs: &Assumptions,
+) -> Vec<AtomId> {
+    let mut fs: Vec<Rat> = facts
+        .iter()
+        .filter(|f| !f.value.is_zero())
+        .map(|f| f.value.clone())
+        .collect();
+    'solve: loop {
+        for (i, f) in fs.iter().enumerate() {
+            let mut atoms = f.num().atoms();
+            atoms.sort_by(|a, b| atom::cmp_atoms(*a, *b));
+            for u in atoms {
+                if !is_unknown(u) || f.num().degree_in(u) != 1 {
+                    continue;
+                }
+                let Ok(Some(sol)) = solve_for(f, u, signs) else {
+                    continue;
+                };
+                if sol.divisor.is_some() {
+                    continue;
+                }
+                let mut next = Vec::with_capacity(fs.len());
+                for (j, g) in fs.iter().enumerate() {
+                    if j == i {
+                        continue;
+                    }
+                    match subst_atom(g, u, &sol.value, signs) {
+                        Ok(v) if v.is_zero() => {}
+                        Ok(v) => next.push(v),
+                        // Undefined once solved: keep the fact as it was, constraining.
+                        Err(_) => next.push(g.clone()),
+                    }
+                }
+                fs = next;
+                continue 'solve;
+            }
+        }
+        break;
+    }
+    let mut out = Vec::new();
+    for f in &fs {
+        let mut found = Vec::new();
+        crate::decide::symbols_in(f, &mut found);
+        found.extend(
+            f.atoms()
+                .into_iter()
+                .filter(|a| matches!(&*atom::get(*a), crate::normal::Atom::Moment(..))),
+        );
+        for a in found {
+            if !out.contains(&a) {
+                out.push(a);
+            }
+        }
+    }
+    out
+}
+
+/// The elimination a refutation needs: unknowns first, then (with `params`) every
+/// parameter a fact free of unknowns fixes (with provably nonzero coefficients); the
+/// target, the steps, and the facts that are left.
+pub fn eliminate_all(
+    target: &Rat,
+    facts: &[Fact],
+    is_unknown: &dyn Fn(AtomId) -> bool,
+    signs: &Assumptions,
+    deadline: Option<Instant>,
+    params: bool,
+) -> Result<(Rat, Vec<Step>, Vec<Fact>), NormError> {
+    let first = eliminate_with(target, facts, is_unknown, signs, deadline, false)?;
+    let rest = |steps: &[Step]| -> Vec<Fact> {
+        facts
+            .iter()
+            .filter_map(|f| {
+                apply_steps(&f.value, steps, signs)
+                    .ok()
+                    .filter(|v| !v.is_zero())
+                    .map(|v| Fact {
+                        value: v,
+                        name: f.name.clone(),
+                    })
+            })
+            .collect()
+    };
+    let left = rest(&first.steps);
+    if !params {
+        return Ok((first.target, first.steps, left));
+    }
+    let params: Vec<Fact> = left
+        .iter()
+        .filter(|f| !f.value.atoms().iter().any(|a| is_unknown(*a)))
+        .cloned()
+        .collect();
+    let any_symbol = |a: AtomId| atom::sym_name(a).is_some();
+    let second = eliminate_with(&first.target, &params, &any_symbol, signs, deadline, true)?;
+    let mut steps = first.steps;
+    steps.extend(second.steps);
+    let left = rest(&steps);
+    Ok((second.target, steps, left))
 }
 
 /// Applies solved steps, in order, to another expression (e.g. a divisor).

@@ -39,6 +39,9 @@ pub enum Atom {
     Pow(Rat, Rat),
     /// `∫ x₁^e₁ ⋯ xₙ^eₙ dm` over the abstract body named: every coordinate with its exponent.
     Moment(String, Vec<(String, u32)>),
+    /// A `time` symbol or one of its derivatives (`x'`) at an instant: `subs(x', t, T)`,
+    /// written x′(T). The instant is never the bare time variable `t` (that is `x'` itself).
+    At(String, Rat),
 }
 
 /// What reduction rule, if any, an atom carries.
@@ -89,6 +92,7 @@ fn depth_of(t: &Table, a: &Atom) -> u32 {
         Atom::Sqrt(p) | Atom::Root(p, _) | Atom::Abs(p) => of_poly(p),
         Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) => of_rat(u),
         Atom::Pow(b, e) => of_rat(b).max(of_rat(e)),
+        Atom::At(_, u) => of_rat(u),
     }
 }
 
@@ -120,6 +124,19 @@ pub fn intern(a: Atom) -> AtomId {
 /// The symbol named `name`.
 pub fn sym(name: &str) -> AtomId {
     intern(Atom::Sym(name.to_string()))
+}
+
+/// The `time` symbol (or derivative) `name` at the instant `u`: `x'` itself when `u` is
+/// the time variable `t`.
+pub fn at(name: &str, u: &Rat) -> AtomId {
+    if u.num().len() == 1 && u.den().is_one() {
+        if let [(m, q)] = u.num().terms() {
+            if num_traits::One::is_one(q) && m.pairs() == [(sym("t"), 1)] {
+                return sym(name);
+            }
+        }
+    }
+    intern(Atom::At(name.to_string(), u.clone()))
 }
 
 /// The atom with id `id`. Ids only come from [`intern`], so the lookup cannot fail;
@@ -167,6 +184,7 @@ fn kind_rank(a: &Atom) -> u8 {
         Atom::Cos(_) => 8,
         Atom::Exp(_) => 9,
         Atom::Ln(_) => 10,
+        Atom::At(..) => 11,
     }
 }
 

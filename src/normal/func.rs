@@ -118,11 +118,13 @@ pub fn root(u: &Rat, n: u32, s: &Assumptions) -> Result<Rat, NormError> {
     if u.den().is_one() {
         return root_poly(u.num(), n, s);
     }
-    // root(p/q) = root(p·q^(n−1)) / |q|
+    // root(p/q) = root(p·q^(n−1)) / |q| for even n; an odd root is an odd function,
+    // so there root(p/q) = root(p·q^(n−1)) / q.
     let q = u.den();
     let p = u.num().mul(&q.pow(u64::from(n - 1))?)?;
     let top = root_poly(&p, n, s)?;
-    let bottom = abs(&Rat::poly(q.clone())?, s)?;
+    let q = Rat::poly(q.clone())?;
+    let bottom = if n % 2 == 0 { abs(&q, s)? } else { q };
     top.div(&bottom)
 }
 

@@ -354,6 +354,13 @@ fn atom_text(a: &Atom, style: Style) -> String {
                 format!("{bt}^{{{et}}}")
             }
         }
+        Atom::At(name, u) => {
+            if plain {
+                format!("subs({name}, t, {})", render(u, style))
+            } else {
+                format!("{}\\left({}\\right)", symbol_latex(name), render(u, style))
+            }
+        }
         Atom::Moment(body, exps) => {
             let inner = moment_integrand(exps, style);
             if plain {

@@ -170,7 +170,7 @@ impl Assumptions {
                 Some(q) if q.is_positive() && q < num_traits::One::one() => Sign::Neg,
                 _ => Sign::Unknown,
             },
-            Atom::Sin(_) | Atom::Cos(_) => Sign::Unknown,
+            Atom::Sin(_) | Atom::Cos(_) | Atom::At(..) => Sign::Unknown,
         }
     }
 

@@ -46,6 +46,7 @@ impl<'a> Subst<'a> {
         let s = self.signs;
         Ok(match &*at {
             Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => None,
+            Atom::At(name, u) => self.rat_changed(u)?.map(|v| Rat::atom(atom::at(name, &v))),
             Atom::Sqrt(p) => self
                 .poly_changed(p)?
                 .map(|v| func::sqrt(&v, s))
@@ -208,6 +209,21 @@ impl<'a> Subst<'a> {
     }
 }
 
+/// `r` rebuilt under the signs `s`: every atom that contains the symbol `x` is formed
+/// again, so rules that the signs now allow (`abs(x) = x` for `x > 0`) fire. Used when a
+/// result computed for a bound variable of unknown sign is read as the free symbol.
+pub fn rebuild_under(r: &Rat, x: AtomId, s: &Assumptions) -> Result<Rat, NormError> {
+    if !r.atoms().iter().any(|a| *a != x && atom_depends_on(*a, x)) {
+        return Ok(r.clone());
+    }
+    // Through a placeholder no input can name: both passes rebuild every atom holding x.
+    let tmp = atom::sym("\u{1}rebuild");
+    let there = |a: AtomId| (a == x).then(|| Rat::atom(tmp));
+    let back = |a: AtomId| (a == tmp).then(|| Rat::atom(x));
+    let mid = Subst::new(&there, s).rat(r)?;
+    Subst::new(&back, s).rat(&mid)
+}
+
 /// `r` with atom `x` replaced by `v`.
 pub fn subst_atom(r: &Rat, x: AtomId, v: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
     if !depends_on(r, x) {
@@ -238,5 +254,38 @@ pub fn atom_depends_on(a: AtomId, x: AtomId) -> bool {
         Atom::Sqrt(q) | Atom::Root(q, _) | Atom::Abs(q) => p(q),
         Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) => r(u),
         Atom::Pow(b, e) => r(b) || r(e),
+        Atom::At(_, u) => r(u),
     }
+}
+
+/// Every atom inside atom `a` (its arguments, recursively), `a` excluded.
+pub fn atoms_within(a: AtomId) -> Vec<AtomId> {
+    let mut out = Vec::new();
+    let mut todo = vec![a];
+    while let Some(b) = todo.pop() {
+        let at = atom::get(b);
+        let push_rat = |r: &Rat, todo: &mut Vec<AtomId>| {
+            for x in r.atoms() {
+                todo.push(x);
+            }
+        };
+        match &*at {
+            Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => {}
+            Atom::Sqrt(q) | Atom::Root(q, _) | Atom::Abs(q) => todo.extend(q.atoms()),
+            Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) | Atom::At(_, u) => {
+                push_rat(u, &mut todo)
+            }
+            Atom::Pow(x, e) => {
+                push_rat(x, &mut todo);
+                push_rat(e, &mut todo);
+            }
+        }
+        if b != a && !out.contains(&b) {
+            out.push(b);
+        }
+        if out.len() > 100_000 {
+            break;
+        }
+    }
+    out
 }
