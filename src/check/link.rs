@@ -937,7 +937,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             if let Some(c) = contradiction(&used_facts, &signs) {
                 return Err(Diagnostic::error(
                     "E0306",
-                    format!("the facts in scope contradict each other: with the others, {c} says a nonzero quantity is zero"),
+                    format!("the facts in scope contradict each other: {c}"),
                     span,
                     "checked against contradictory facts",
                 )
@@ -955,6 +955,26 @@ impl<'l, 'o> Checker<'l, 'o> {
                 })
             })
             .collect();
+        // A condition that the values substituted make false, said with where it came from.
+        let own = divisors.iter().map(|d| (None, d));
+        let inherited = facts
+            .iter()
+            .filter(|k| !via.is_empty() && used_names.contains(&k.fact.name.as_str()))
+            .flat_map(|k| k.divisors.iter().map(move |d| (Some(k.fact.name.as_str()), d)));
+        for (from, (d0, need)) in own.chain(inherited) {
+            if *need != Need::NonZero || !apply(d0).is_ok_and(|d| d.is_zero()) {
+                continue;
+            }
+            let message = match from {
+                Some(fact) => format!(
+                    "this step uses {fact}, which holds only where {} != 0, and here it is 0",
+                    plain(d0)
+                ),
+                None if d0.as_constant().is_some() => "this step divides by zero at the value substituted (in `subs` or `eval`)".to_string(),
+                None => format!("this step divides by {}, which `where` makes 0", plain(d0)),
+            };
+            return Err(Diagnostic::error("E0305", message, span, "division by zero"));
+        }
         let mut conditions: Vec<String> = Vec::new();
         let mut all_divs: Vec<(Rat, Need)> = divisors
             .iter()

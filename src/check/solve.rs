@@ -442,14 +442,15 @@ fn sign_compatible(declared: Sign, value: Sign, is_zero: bool) -> bool {
 
 /// A fact that the others make false (a nonzero quantity equal to zero, or a value for
 /// a symbol against its declared sign), found by eliminating atoms with provably nonzero
-/// coefficients only. The answer does not depend on the order of the symbols' names:
-/// every solved symbol's final value is checked against its declared sign.
+/// coefficients only, described. The answer does not depend on the order of the
+/// symbols' names: every solved symbol's final value is checked against its declared sign.
 pub fn contradiction(facts: &[Fact], signs: &Assumptions) -> Option<String> {
+    let says_zero = |name: &str| format!("with the others, {name} says a nonzero quantity is zero");
     let mut fs: Vec<Fact> = facts.to_vec();
     let mut solved: Vec<(AtomId, Rat, String)> = Vec::new();
     for _ in 0..=facts.len() {
         if let Some(f) = fs.iter().find(|f| signs.rat(&f.value).is_nonzero()) {
-            return Some(f.name.clone());
+            return Some(says_zero(&f.name));
         }
         let mut pick = None;
         'outer: for (i, f) in fs.iter().enumerate() {
@@ -490,10 +491,24 @@ pub fn contradiction(facts: &[Fact], signs: &Assumptions) -> Option<String> {
         solved.push((u, value, fact.name));
     }
     if let Some(f) = fs.iter().find(|f| signs.rat(&f.value).is_nonzero()) {
-        return Some(f.name.clone());
+        return Some(says_zero(&f.name));
     }
     solved.into_iter().find_map(|(u, v, name)| {
-        (!sign_compatible(signs.declared(u), signs.rat(&v), v.is_zero())).then_some(name)
+        let declared = signs.declared(u);
+        (!sign_compatible(declared, signs.rat(&v), v.is_zero())).then(|| {
+            let x = unknown_name(u);
+            let sign = match declared {
+                Sign::Pos => "> 0",
+                Sign::NonNeg => ">= 0",
+                Sign::Neg => "< 0",
+                Sign::NonPos => "<= 0",
+                _ => "!= 0",
+            };
+            format!(
+                "with the others, {name} gives {x} = {}, against the declared {x} {sign}",
+                crate::normal::print::plain(&v)
+            )
+        })
     })
 }
 
@@ -616,5 +631,5 @@ pub fn apply_steps(r: &Rat, steps: &[Step], signs: &Assumptions) -> Result<Rat, 
 
 /// `q` as text (helper for messages).
 pub fn unknown_name(a: AtomId) -> String {
-    atom::sym_name(a).unwrap_or_else(|| "?".into())
+    atom::sym_name(a).unwrap_or_else(|| crate::normal::print::atom_plain(&atom::get(a)))
 }

@@ -112,3 +112,60 @@ fn results_come_in_a_stable_order() {
     assert_eq!(a, sorted);
     assert!(a.len() >= 9);
 }
+
+/// `% expect E0305 line 11: …` on a fixture's first line: the code and line of the
+/// first error it must produce.
+fn expectation(first_line: &str) -> Option<(String, usize)> {
+    let rest = first_line.strip_prefix("% expect ")?;
+    let (head, _) = rest.split_once(':')?;
+    let mut words = head.split_whitespace();
+    let code = words.next()?.to_string();
+    (words.next()? == "line").then_some(())?;
+    let line = words.next()?.parse().ok()?;
+    Some((code, line))
+}
+
+#[test]
+fn fixtures_with_an_expectation_fail_with_that_code_on_that_line() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/check/fail");
+    let mut checked = 0;
+    let mut entries: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("the fail fixtures")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "deriv"))
+        .collect();
+    entries.sort();
+    for path in entries {
+        let text = std::fs::read_to_string(&path).expect("readable fixture");
+        let Some((code, line)) = expectation(text.lines().next().unwrap_or_default()) else {
+            continue;
+        };
+        let r = check_one(&path);
+        let first = r
+            .diagnostics
+            .iter()
+            .find(|d| d.severity == rigor::diag::Severity::Error)
+            .unwrap_or_else(|| panic!("{}: no error reported", path.display()));
+        let at = first.primary.as_ref().map_or(0, |(span, _)| {
+            r.source[..span.start.min(r.source.len())].matches('\n').count() + 1
+        });
+        assert_eq!(
+            (first.code, at),
+            (code.as_str(), line),
+            "{}: first error `{}`",
+            path.display(),
+            first.message
+        );
+        checked += 1;
+    }
+    assert!(checked >= 15, "the soundness fixtures carry expectations ({checked})");
+}
+
+#[test]
+fn expectation_lines_parse() {
+    assert_eq!(
+        expectation("% expect E0305 line 11: a division"),
+        Some(("E0305".into(), 11))
+    );
+    assert_eq!(expectation("% mistake: no code"), None);
+}
