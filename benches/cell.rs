@@ -109,7 +109,10 @@ fn w4_trace() {
         let one = W4 {
             pairs: vec![(p.0, p.1.clone(), p.2.clone())],
         };
-        rigor::normal::poly::set_deadline(Some(Instant::now() + Duration::from_secs(2)));
+        rigor::normal::poly::set_deadline(rigor::clock::Deadline::after(
+            Duration::from_secs(2),
+            rigor::clock::system(),
+        ));
         let t = Instant::now();
         let d = std::panic::catch_unwind(|| w4_run(&one)).ok().map(|d| d[0]);
         let dt = t.elapsed().as_secs_f64();

@@ -19,11 +19,15 @@
 
 pub mod calculus;
 pub mod check;
+pub mod clock;
 pub mod decide;
 pub mod diag;
+pub mod files;
 pub mod interval;
 pub mod lower;
 pub mod normal;
 pub mod render;
 pub mod solve;
 pub mod syntax;
+
+pub use check::{check_source, FileReport, MemoryResolver, Options, Resolver};

@@ -87,6 +87,9 @@ pub enum Need {
     NonNegative,
 }
 
+/// A condition as data: a value and what it must be.
+pub type Condition = (Rat, Need);
+
 /// A condition for an expression to be defined (a divisor, the argument of `ln` or of
 /// a square root) that the declared signs do not settle, recorded for side conditions.
 #[derive(Clone, Debug)]

@@ -120,7 +120,10 @@ fn main() -> ExitCode {
         std::time::Duration::from_secs(10)
     };
     if !matches!(cli.command, Command::Check { .. }) {
-        rigor::normal::poly::set_deadline(Some(std::time::Instant::now() + timeout));
+        rigor::normal::poly::set_deadline(rigor::clock::Deadline::after(
+            timeout,
+            rigor::clock::system(),
+        ));
     }
     let code = match cli.command {
         Command::Simplify {

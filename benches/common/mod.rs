@@ -248,7 +248,7 @@ pub fn w1_fingerprint(r: &(usize, Vec<&'static str>)) -> Value {
 
 pub fn w1check_run() -> Vec<rigor::check::FileReport> {
     let dir = repo_dir().join("derivations");
-    rigor::check::check_paths(&[dir], &rigor::check::Options::default())
+    rigor::files::check_paths(&[dir], &rigor::check::Options::default())
 }
 
 pub fn w1check_fingerprint(r: &[rigor::check::FileReport]) -> Value {

@@ -2,8 +2,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use rigor::check::{check_source, Options};
-use std::path::Path;
+use rigor::check::{check_source, MemoryResolver, Options};
 use std::time::Duration;
 
 fuzz_target!(|data: &[u8]| {
@@ -15,8 +14,8 @@ fuzz_target!(|data: &[u8]| {
         timeout: Duration::from_millis(200),
         ..Options::default()
     };
-    // A path inside an empty folder: `use` finds nothing to import.
-    let report = check_source(Path::new("fuzz-empty-dir/input.deriv"), text, &opts);
+    // No other file exists: `use` finds nothing to import.
+    let report = check_source("input.deriv", text, &opts, &MemoryResolver::new());
     // Rendering the report must not panic either.
     let _ = rigor::render::human::report(&report, true);
     let _ = rigor::render::json::report(&report);

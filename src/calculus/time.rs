@@ -9,6 +9,9 @@ use crate::normal::subst::{atom_depends_on, Subst};
 use crate::normal::{Assumptions, NormError, Poly, Rat, Q};
 use num_bigint::BigInt;
 
+/// An atom and its exponent in a monomial.
+type Factor = (AtomId, u32);
+
 /// Whether atom `a` is a `time` symbol (or a derivative of one) or contains one.
 fn time_dependent(a: AtomId, is_time: &dyn Fn(&str) -> bool) -> bool {
     match &*atom::get(a) {
@@ -74,7 +77,7 @@ pub fn time_antiderivative(
     let mut total = Rat::zero();
     for (m, q) in f.num().terms() {
         let term = Rat::poly(Poly::term(m.clone(), q.clone()))?;
-        let (timed, rest): (Vec<(AtomId, u32)>, Vec<(AtomId, u32)>) =
+        let (timed, rest): (Vec<Factor>, Vec<Factor>) =
             m.pairs().iter().partition(|(a, _)| dep(*a));
         if timed.is_empty() {
             total = total.add(&antiderivative(&term, t, s)?)?;

@@ -1,12 +1,34 @@
-//! The checker: walks a derivation file in order, keeps declarations and facts, and
-//! checks every link of every claim (FORMAT.md §3). It never fails: every outcome,
-//! errors included, is recorded in a [`FileReport`].
+//! The checker: walks a derivation in order, keeps declarations and facts, and checks
+//! every link of every claim (FORMAT.md §3). It never fails: every outcome, errors
+//! included, is recorded in a [`FileReport`]. One entry, [`check_source`], pure: imports
+//! come through a [`Resolver`].
+//!
+//! | file | owns |
+//! |---|---|
+//! | `entry.rs` | [`check_source`], [`Options`], [`Resolver`], imports' cycles and cache |
+//! | `walk.rs` | the walk over a file: statements, scope, bodies, givens, constraints |
+//! | `claims.rs` | claims: `where`, each link in turn, the facts a claim adds |
+//! | `imports.rs` | `use … with …`: imported claims instantiated, with their conditions |
+//! | `step.rs` | deciding one link: identity, elimination with the facts, the verdict |
+//! | `conditions.rs` | side conditions of a link: assumed, settled, or failing it |
+//! | `explain.rs` | a link that fails: refutation (only where the facts allow), or why not |
+//! | `relations.rs` | `!=`, `<`, `<=`, `>`, `>=` and `~=` links |
+//! | `signs.rs` | signs of differences and divisors, values against declared signs |
+//! | `solve.rs` | elimination of unknowns, contradictions, zero divisors |
+//! | `scope.rs`, `report.rs` | declarations; the results as data |
 
-mod link;
-mod load;
+mod claims;
+mod conditions;
+mod entry;
+mod explain;
+mod imports;
+mod relations;
 pub mod report;
 pub mod scope;
+mod signs;
 pub mod solve;
+mod step;
+mod walk;
 
-pub use load::{check_paths, check_source, Options};
+pub use entry::{check_source, Exports, MemoryResolver, Options, Resolver, Source};
 pub use report::{cite, ClaimReport, FileReport, Justification, LinkReport, Status};

@@ -2,10 +2,10 @@
 //! elimination over the field of rational functions in the parameters) and principal
 //! roots of positive unknowns that appear only as `u^n`.
 
+use crate::clock::Deadline;
 use crate::normal::atom::{self, AtomId};
 use crate::normal::subst::{atom_depends_on, depends_on, subst_atom};
 use crate::normal::{func, Assumptions, NormError, Poly, Rat, Sign};
-use std::time::Instant;
 
 /// A fact `value = 0`, with the name it is cited by.
 #[derive(Clone, Debug)]
@@ -54,7 +54,7 @@ pub fn eliminate(
     facts: &[Fact],
     is_unknown: &dyn Fn(AtomId) -> bool,
     signs: &Assumptions,
-    deadline: Option<Instant>,
+    deadline: Option<Deadline>,
 ) -> Result<Elimination, NormError> {
     // A constant multiple of one fact needs no elimination (and no side condition).
     for f in facts {
@@ -107,7 +107,7 @@ fn eliminate_with(
     facts: &[Fact],
     is_unknown: &dyn Fn(AtomId) -> bool,
     signs: &Assumptions,
-    deadline: Option<Instant>,
+    deadline: Option<Deadline>,
     strict: bool,
 ) -> Result<Elimination, NormError> {
     let mut conditional = false;
@@ -118,7 +118,7 @@ fn eliminate_with(
     let mut timed_out = false;
     let mut multiple = None;
     loop {
-        if deadline.is_some_and(|d| Instant::now() > d) {
+        if deadline.is_some_and(|d| d.passed()) {
             timed_out = true;
             break;
         }
@@ -363,7 +363,7 @@ pub fn reduce_fully(
     facts: &[Fact],
     is_unknown: &dyn Fn(AtomId) -> bool,
     signs: &Assumptions,
-    deadline: Option<Instant>,
+    deadline: Option<Deadline>,
 ) -> Result<Rat, NormError> {
     let first = eliminate_with(target, facts, is_unknown, signs, deadline, false)?;
     let mut rest: Vec<Fact> = Vec::new();
@@ -434,7 +434,7 @@ fn sign_compatible(declared: Sign, value: Sign, is_zero: bool) -> bool {
     match declared {
         Sign::Pos => !is_zero && !value.is_nonpos(),
         Sign::NonNeg => value != Sign::Neg,
-        Sign::NonZero | Sign::Neg => !is_zero && !(declared == Sign::Neg && value.is_nonneg()),
+        Sign::NonZero | Sign::Neg => !(is_zero || declared == Sign::Neg && value.is_nonneg()),
         Sign::NonPos => value != Sign::Pos,
         _ => true,
     }
@@ -585,7 +585,7 @@ pub fn eliminate_all(
     facts: &[Fact],
     is_unknown: &dyn Fn(AtomId) -> bool,
     signs: &Assumptions,
-    deadline: Option<Instant>,
+    deadline: Option<Deadline>,
     params: bool,
 ) -> Result<(Rat, Vec<Step>, Vec<Fact>), NormError> {
     let first = eliminate_with(target, facts, is_unknown, signs, deadline, false)?;

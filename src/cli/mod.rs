@@ -252,8 +252,9 @@ pub fn check(
         parse: *opts,
         timeout,
         max_file_size,
+        clock: rigor::clock::system(),
     };
-    let reports = rigor::check::check_paths(paths, &options);
+    let reports = rigor::files::check_paths(paths, &options);
     match format {
         Format::Human => {
             for r in &reports {
@@ -294,7 +295,7 @@ pub fn document(file: &Path, out: Option<&Path>, latex: bool, opts: &ParseOption
         parse: *opts,
         ..rigor::check::Options::default()
     };
-    let mut reports = rigor::check::check_paths(&[file.to_path_buf()], &options);
+    let mut reports = rigor::files::check_paths(&[file.to_path_buf()], &options);
     if reports.len() != 1 {
         errln!("error: {} is not one derivation file", file.display());
         return 2;

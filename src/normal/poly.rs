@@ -31,19 +31,19 @@ pub fn max_bits() -> u64 {
 }
 
 thread_local! {
-    static DEADLINE: std::cell::Cell<Option<std::time::Instant>> = const { std::cell::Cell::new(None) };
+    static DEADLINE: std::cell::Cell<Option<crate::clock::Deadline>> = const { std::cell::Cell::new(None) };
 }
 
 /// Sets (or clears) the wall-clock deadline of the work on this thread; long operations
 /// check it and fail with [`Limit::Time`].
-pub fn set_deadline(d: Option<std::time::Instant>) {
+pub fn set_deadline(d: Option<crate::clock::Deadline>) {
     DEADLINE.with(|c| c.set(d));
 }
 
 /// Fails with [`Limit::Time`] once this thread's deadline has passed.
 pub fn check_deadline() -> Result<(), Limit> {
     match DEADLINE.with(|c| c.get()) {
-        Some(d) if std::time::Instant::now() > d => Err(Limit::Time),
+        Some(d) if d.passed() => Err(Limit::Time),
         _ => Ok(()),
     }
 }

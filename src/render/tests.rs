@@ -564,7 +564,7 @@ fn compile(name: &str, tex: &str) {
 fn checked_documents_compile() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let paths = vec![root.join("derivations"), root.join("tests/check/fail")];
-    let reports = crate::check::check_paths(&paths, &crate::check::Options::default());
+    let reports = crate::files::check_paths(&paths, &crate::check::Options::default());
     assert!(!reports.is_empty());
     let mut all = String::new();
     for r in &reports {

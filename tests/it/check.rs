@@ -1,7 +1,8 @@
 //! Checker fixtures: `tests/check/pass` must verify, every `tests/check/fail` file must
 //! fail with the diagnostic in its snapshot, and every handout derivation must verify.
 
-use rigor::check::{check_paths, FileReport, Options, Status};
+use rigor::check::{FileReport, Options, Status};
+use rigor::files::check_paths;
 use std::path::{Path, PathBuf};
 
 fn check_one(path: &Path) -> FileReport {
@@ -147,7 +148,10 @@ fn fixtures_with_an_expectation_fail_with_that_code_on_that_line() {
             .find(|d| d.severity == rigor::diag::Severity::Error)
             .unwrap_or_else(|| panic!("{}: no error reported", path.display()));
         let at = first.primary.as_ref().map_or(0, |(span, _)| {
-            r.source[..span.start.min(r.source.len())].matches('\n').count() + 1
+            r.source[..span.start.min(r.source.len())]
+                .matches('\n')
+                .count()
+                + 1
         });
         assert_eq!(
             (first.code, at),
@@ -158,7 +162,10 @@ fn fixtures_with_an_expectation_fail_with_that_code_on_that_line() {
         );
         checked += 1;
     }
-    assert!(checked >= 15, "the soundness fixtures carry expectations ({checked})");
+    assert!(
+        checked >= 15,
+        "the soundness fixtures carry expectations ({checked})"
+    );
 }
 
 #[test]

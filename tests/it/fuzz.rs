@@ -7,14 +7,13 @@
 //! The fast set runs in `cargo test`; `cargo test -- --ignored` runs the long set.
 
 use proptest::prelude::*;
-use rigor::check::{check_source, Justification, Options, Status};
+use rigor::check::{check_source, Justification, MemoryResolver, Options, Status};
 use rigor::decide::Evaluator;
 use rigor::interval::Interval;
 use rigor::lower::{lower, Env};
 use rigor::normal::{Rat, Q};
 use rigor::syntax::{parse_expr, parse_file, ParseOptions};
 use std::collections::HashMap;
-use std::path::Path;
 use std::time::Duration;
 
 // ---------------------------------------------------------------- random text
@@ -435,7 +434,7 @@ fn check_and_validate(g: &GenFile, pt: &[(i64, i64)]) -> Result<(), TestCaseErro
         timeout: Duration::from_secs(2),
         ..Options::default()
     };
-    let report = check_source(Path::new("generated.deriv"), &g.text, &opts);
+    let report = check_source("generated.deriv", &g.text, &opts, &MemoryResolver::new());
     // Rendering must not panic either.
     let _ = rigor::render::human::report(&report, true);
     let _ = rigor::render::json::report(&report);
@@ -483,8 +482,9 @@ fn check_and_validate(g: &GenFile, pt: &[(i64, i64)]) -> Result<(), TestCaseErro
 /// Parses an expression and, if it parses, lowers it: nothing may panic.
 fn expr_survives(s: &str) {
     if let Ok(e) = parse_expr(s, &ParseOptions::default()) {
-        rigor::normal::poly::set_deadline(Some(
-            std::time::Instant::now() + Duration::from_millis(500),
+        rigor::normal::poly::set_deadline(rigor::clock::Deadline::after(
+            Duration::from_millis(500),
+            rigor::clock::system(),
         ));
         let _ = lower(&e, &Env::default());
         rigor::normal::poly::set_deadline(None);
@@ -498,7 +498,7 @@ fn file_survives(s: &str) {
         timeout: Duration::from_secs(1),
         ..Options::default()
     };
-    let report = check_source(Path::new("generated.deriv"), s, &opts);
+    let report = check_source("generated.deriv", s, &opts, &MemoryResolver::new());
     let _ = rigor::render::human::report(&report, true);
     let _ = rigor::render::json::report(&report);
     let _ = rigor::render::github::report(&report);

@@ -6,6 +6,7 @@ mod cli;
 mod equiv;
 mod fuzz;
 mod hostile;
+mod library;
 mod normal;
 mod props;
 mod workloads;

@@ -1,0 +1,287 @@
+//! Claims: the `where` substitutions, each link of the chain in turn (decided in
+//! `step.rs`), and what a verified claim adds to the facts (with the conditions it was
+//! derived under) and to the file's exports.
+
+use super::report::{ClaimReport, LinkReport, Status};
+use super::scope::{Decl, Scope};
+use super::signs::respects_sign;
+use super::solve::Fact;
+use super::step::LinkInput;
+use super::walk::{Checker, Known};
+use crate::clock::Deadline;
+use crate::lower::Condition;
+use crate::normal::atom::{self, AtomId};
+use crate::normal::print::plain;
+use crate::normal::Rat;
+use crate::syntax::ast::{Assign, By, Chain, Expr, ExprKind, RelOp, Span};
+
+/// An equation a verified link adds to the facts, with its conditions.
+type NewFact = (Rat, Vec<Condition>);
+
+impl Checker<'_, '_> {
+    /// Checks a claim within its time budget.
+    pub(super) fn claim(
+        &mut self,
+        label: Option<String>,
+        chain: &Chain,
+        where_: &[Assign],
+        span: Span,
+    ) {
+        let line = self.line(span);
+        let claim = ClaimReport {
+            label: label.clone(),
+            span,
+            line,
+            links: Vec::new(),
+        };
+        let deadline = Deadline::after(self.loader.opts.timeout, self.loader.opts.clock);
+        crate::normal::poly::set_deadline(deadline);
+        self.timed_out = false;
+        self.claim_inner(label, chain, where_, claim, deadline);
+        crate::normal::poly::set_deadline(None);
+    }
+
+    fn claim_inner(
+        &mut self,
+        label: Option<String>,
+        chain: &Chain,
+        where_: &[Assign],
+        mut claim: ClaimReport,
+        deadline: Option<Deadline>,
+    ) {
+        let span = claim.span;
+        let Some(subs) = self.where_subs(where_) else {
+            return self.push_error_claim(claim, chain);
+        };
+        let mut divs = Vec::new();
+        let Some(first) = self.lower(&chain.first, &mut divs) else {
+            return self.push_error_claim(claim, chain);
+        };
+        let (mut prev, mut prev_divs) = (first, divs);
+        let mut new_facts: Vec<NewFact> = Vec::new();
+        for (i, link) in chain.links.iter().enumerate() {
+            let span = if i == 0 {
+                chain.first.span.to(link.span)
+            } else {
+                link.span
+            };
+            let mut divs = Vec::new();
+            let Some(rhs) = self.lower(&link.rhs, &mut divs) else {
+                let status = if self.timed_out {
+                    Status::Undecided
+                } else {
+                    Status::Error
+                };
+                claim.links.push(LinkReport {
+                    span,
+                    op: link.op,
+                    lhs: None,
+                    rhs: None,
+                    status,
+                });
+                break;
+            };
+            let mut all_divs = prev_divs.clone();
+            all_divs.extend(divs.iter().cloned());
+            let input = LinkInput {
+                lhs: &prev,
+                rhs: &rhs,
+                link,
+                span,
+                subs: &subs,
+                divisors: &all_divs,
+                deadline,
+            };
+            let status = self.check_link(&input).unwrap_or_else(|d| {
+                self.report.diagnostics.push(d);
+                Status::Failed
+            });
+            // With `where`, a claim is a special case and adds nothing general.
+            if status.is_verified() && link.op == RelOp::Eq && subs.is_empty() {
+                if let Ok(v) = prev.sub(&rhs) {
+                    new_facts.push((v, self.fact_conditions(all_divs)));
+                }
+            }
+            claim.links.push(LinkReport {
+                span,
+                op: link.op,
+                lhs: Some(plain(&prev)),
+                rhs: Some(plain(&rhs)),
+                status,
+            });
+            prev = rhs;
+            prev_divs = divs;
+        }
+        self.add_claim_facts(&label, span, new_facts, claim.verified());
+        self.report.claims.push(claim);
+    }
+
+    /// The conditions a verified step's fact carries: its own, the elimination's
+    /// divisors and those of the facts it used.
+    fn fact_conditions(&mut self, own: Vec<Condition>) -> Vec<Condition> {
+        let mut conds = own;
+        for c in std::mem::take(&mut self.conditions) {
+            if !conds.iter().any(|d| d.0 == c.0 && d.1 == c.1) {
+                conds.push(c);
+            }
+        }
+        conds
+    }
+
+    /// A verified claim's equalities become facts, and (labelled and wholly verified)
+    /// exports.
+    fn add_claim_facts(
+        &mut self,
+        label: &Option<String>,
+        span: Span,
+        new_facts: Vec<NewFact>,
+        verified: bool,
+    ) {
+        let name = self.fact_name(label, span);
+        for (v, divs) in &new_facts {
+            self.facts.push(Known {
+                label: label.clone(),
+                fact: Fact {
+                    value: v.clone(),
+                    name: name.clone(),
+                },
+                divisors: divs.clone(),
+            });
+        }
+        if let Some(l) = label {
+            if verified && !new_facts.is_empty() {
+                self.exports.claims.insert(l.clone(), new_facts);
+            }
+        }
+    }
+
+    /// The `where` substitutions of a claim; `None` after reporting a bad one.
+    fn where_subs(&mut self, where_: &[Assign]) -> Option<Vec<(AtomId, Rat)>> {
+        let mut subs: Vec<(AtomId, Rat)> = Vec::new();
+        for a in where_ {
+            let name = &a.name.name;
+            let refuse = |why: String, hint: &str| Some((why, hint.to_string()));
+            let problem = if !self.scope.is_declared(name) {
+                self.declared(&Expr::new(ExprKind::Sym(name.clone()), a.name.span));
+                return None;
+            } else if self.scope.names.get(name) == Some(&Decl::Def) {
+                refuse(
+                    format!("`where` cannot set `{name}`: it is defined by `let`"),
+                    "set the symbols its definition is made of instead",
+                )
+            } else if self.scope.is_unknown(name) {
+                refuse(
+                    format!("`where` cannot set the unknown `{name}`"),
+                    "`where` picks a special case of the parameters; the facts determine the unknowns",
+                )
+            } else if subs.iter().any(|s| s.0 == atom::sym(name)) {
+                refuse(format!("`{name}` is set twice in this `where`"), "")
+            } else {
+                None
+            };
+            if let Some((why, hint)) = problem {
+                self.error("E0207", why, a.name.span, &hint);
+                return None;
+            }
+            let x = atom::sym(name);
+            let v = self.lower(&a.value, &mut Vec::new())?;
+            if let Err(m) = respects_sign(name, self.env.signs.declared(x), &v, &self.env.signs) {
+                self.error(
+                    "E0207",
+                    m,
+                    a.value.span,
+                    "this value does not respect the declared sign",
+                );
+                return None;
+            }
+            subs.push((x, v));
+        }
+        Some(subs)
+    }
+
+    fn push_error_claim(&mut self, mut claim: ClaimReport, chain: &Chain) {
+        let status = if self.timed_out {
+            Status::Undecided
+        } else {
+            Status::Error
+        };
+        for (i, link) in chain.links.iter().enumerate() {
+            let span = if i == 0 {
+                chain.first.span.to(link.span)
+            } else {
+                link.span
+            };
+            claim.links.push(LinkReport {
+                span,
+                op: link.op,
+                lhs: None,
+                rhs: None,
+                status: status.clone(),
+            });
+        }
+        self.report.claims.push(claim);
+    }
+
+    /// The facts a link may use: all in scope, or those `by [..]` names (`Err` when a
+    /// label names none; nothing is reported).
+    pub(super) fn facts_in(&self, by: Option<&By>) -> Result<Vec<Known>, ()> {
+        let Some(By::Labels(ls)) = by else {
+            return Ok(self.facts.clone());
+        };
+        let mut out = Vec::new();
+        for l in ls {
+            let found = self
+                .facts
+                .iter()
+                .filter(|k| k.label.as_deref() == Some(l.name.as_str()));
+            let before = out.len();
+            out.extend(found.cloned());
+            if out.len() == before {
+                return Err(());
+            }
+        }
+        Ok(out)
+    }
+
+    /// Like [`Checker::facts_in`], reporting every label that names no fact.
+    pub(super) fn facts_for(&mut self, by: Option<&By>) -> Result<Vec<Known>, ()> {
+        if let Ok(v) = self.facts_in(by) {
+            return Ok(v);
+        }
+        let Some(By::Labels(ls)) = by else {
+            return Err(());
+        };
+        for l in ls {
+            if self
+                .facts
+                .iter()
+                .any(|k| k.label.as_deref() == Some(l.name.as_str()))
+            {
+                continue;
+            }
+            let known: Vec<String> = self.labels.keys().cloned().collect();
+            let hint = if self.labels.contains_key(&l.name) {
+                "that label names no equation that holds (a failed claim, or an inequality)"
+                    .to_string()
+            } else if known.is_empty() {
+                "no labelled facts precede this line".into()
+            } else {
+                let mut sc = Scope::default();
+                for k in &known {
+                    sc.names.insert(k.clone(), Decl::Symbol);
+                }
+                sc.suggest(&l.name)
+                    .map_or("no fact before this line has that label".into(), |s| {
+                        format!("did you mean [{s}]?")
+                    })
+            };
+            self.error(
+                "E0205",
+                format!("unknown label [{}]", l.name),
+                l.span,
+                &hint,
+            );
+        }
+        Err(())
+    }
+}

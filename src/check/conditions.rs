@@ -1,0 +1,145 @@
+//! Side conditions of a link (FORMAT.md §3): the divisors, arguments of `ln` and
+//! radicands met while lowering it, those of the facts it used, and the divisors of
+//! the elimination. One that the signs settle is dropped; one the facts or the values
+//! substituted make false fails the link; the rest are reported as assumptions.
+
+use super::signs::{essential_factor, sign_of};
+use super::solve::zero_by_facts;
+use super::step::{LinkInput, Reduced};
+use super::walk::Checker;
+use crate::diag::Diagnostic;
+use crate::lower::{Condition, Need};
+use crate::normal::print::plain;
+use crate::normal::{Rat, Sign};
+
+/// The conditions a link holds under: as text (those to report) and as values (all).
+type Assumed = (Vec<String>, Vec<Condition>);
+
+impl Checker<'_, '_> {
+    /// The conditions a link holds under, as text and as values; an error when one fails.
+    pub(super) fn side_conditions(
+        &self,
+        input: &LinkInput<'_>,
+        red: &Reduced,
+    ) -> Result<Assumed, Diagnostic> {
+        self.substituted_to_zero(input, red)?;
+        let apply = |d: &Condition| self.apply_where(input.subs, &d.0).ok().map(|v| (v, d.1));
+        let mut all: Vec<Condition> = input.divisors.iter().filter_map(apply).collect();
+        if !red.via.is_empty() {
+            all.extend(
+                self.inherited(red)
+                    .into_iter()
+                    .filter_map(|(_, d)| apply(d)),
+            );
+        }
+        let steps = red.elim.as_ref().map_or(&[][..], |e| &e.steps[..]);
+        all.extend(
+            steps
+                .iter()
+                .filter_map(|s| s.divisor.clone().map(|d| (d, Need::NonZero))),
+        );
+        let mut conditions: Vec<String> = Vec::new();
+        for (d, need) in &all {
+            if let Some(text) = self.condition(d, *need, red, input)? {
+                if !conditions.contains(&text) {
+                    conditions.push(text);
+                }
+            }
+        }
+        Ok((conditions, all))
+    }
+
+    /// The conditions of the facts a link used (a fact derived assuming `c != 0` holds
+    /// only where `c != 0`), with the fact's name.
+    fn inherited<'k>(&self, red: &'k Reduced) -> Vec<(&'k str, &'k Condition)> {
+        red.allowed
+            .iter()
+            .filter(|k| red.used_names.contains(&k.fact.name))
+            .flat_map(|k| k.divisors.iter().map(move |d| (k.fact.name.as_str(), d)))
+            .collect()
+    }
+
+    /// A divisor that the values substituted make zero, said with where it came from.
+    fn substituted_to_zero(&self, input: &LinkInput<'_>, red: &Reduced) -> Result<(), Diagnostic> {
+        let own = input.divisors.iter().map(|d| (None, d));
+        let inherited = if red.via.is_empty() {
+            Vec::new()
+        } else {
+            self.inherited(red)
+        };
+        let all = own.chain(inherited.into_iter().map(|(n, d)| (Some(n), d)));
+        for (from, (d0, need)) in all {
+            let zero = self.apply_where(input.subs, d0).is_ok_and(|d| d.is_zero());
+            if *need != Need::NonZero || !zero {
+                continue;
+            }
+            let message = match from {
+                Some(fact) => format!(
+                    "this step uses {fact}, which holds only where {} != 0, and here it is 0",
+                    plain(d0)
+                ),
+                None if d0.as_constant().is_some() => {
+                    "this step divides by zero at the value substituted (in `subs` or `eval`)"
+                        .to_string()
+                }
+                None => format!("this step divides by {}, which `where` makes 0", plain(d0)),
+            };
+            return Err(Diagnostic::error(
+                "E0305",
+                message,
+                input.span,
+                "division by zero",
+            ));
+        }
+        Ok(())
+    }
+
+    /// One condition: `None` when the signs settle it, its text when it must be assumed.
+    fn condition(
+        &self,
+        d: &Rat,
+        need: Need,
+        red: &Reduced,
+        input: &LinkInput<'_>,
+    ) -> Result<Option<String>, Diagnostic> {
+        let signs = &self.env.signs;
+        let span = input.span;
+        let steps = red.elim.as_ref().map_or(&[][..], |e| &e.steps[..]);
+        let reduced = super::solve::apply_steps(d, steps, signs).unwrap_or_else(|_| d.clone());
+        if need == Need::NonZero {
+            if reduced.is_zero() || zero_by_facts(&reduced, &red.scope, signs) {
+                return Err(Diagnostic::error(
+                    "E0305",
+                    format!(
+                        "this step divides by {}, which is zero by the facts",
+                        plain(d)
+                    ),
+                    span,
+                    "division by zero",
+                ));
+            }
+            return Ok(essential_factor(&reduced, signs).map(|e| format!("{} != 0", plain(&e))));
+        }
+        let s = sign_of(&reduced, signs);
+        let (ok, bad, op) = if need == Need::Positive {
+            (s == Sign::Pos, s.is_nonpos(), ">")
+        } else {
+            (s.is_nonneg(), s == Sign::Neg, ">=")
+        };
+        if ok {
+            return Ok(None);
+        }
+        if bad {
+            return Err(Diagnostic::error(
+                "E0305",
+                format!(
+                    "this step takes ln or a square root of {}, which is not {op} 0 here",
+                    plain(d)
+                ),
+                span,
+                "outside the domain",
+            ));
+        }
+        Ok(Some(format!("{} {op} 0", plain(&reduced))))
+    }
+}

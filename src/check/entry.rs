@@ -1,0 +1,223 @@
+//! The one entry of the checker: [`check_source`] checks a derivation given as text and
+//! returns its [`FileReport`]. It is pure: it reads no file and no clock of its own and
+//! starts no thread. `use … from "f.deriv"` goes through a [`Resolver`] the caller passes
+//! in (the command line reads files beside the importing one, tests and the browser keep
+//! them in memory), like typst's `World`.
+
+use super::report::FileReport;
+use super::walk::Checker;
+use crate::diag::Diagnostic;
+use crate::lower::Condition;
+use crate::normal::Rat;
+use crate::syntax::{parse_file, ParseOptions};
+use std::collections::HashMap;
+use std::time::Duration;
+
+/// Settings of a check run.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// Parser limits.
+    pub parse: ParseOptions,
+    /// Wall-clock budget per claim (only where there is a clock).
+    pub timeout: Duration,
+    /// Largest file read, in bytes (by resolvers that read files).
+    pub max_file_size: u64,
+    /// The clock the time budget is measured on; `None`: no budget.
+    pub clock: Option<crate::clock::Clock>,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            parse: ParseOptions::default(),
+            timeout: Duration::from_secs(10),
+            max_file_size: 10_000_000,
+            clock: crate::clock::system(),
+        }
+    }
+}
+
+/// A file an import resolves to.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Source {
+    /// A name that identifies the file (equal names: the same file), used for cycles,
+    /// for the cache, and as the importer of the file's own imports.
+    pub id: String,
+    /// How messages name it (`rod.deriv`).
+    pub display: String,
+    /// Its text.
+    pub text: String,
+}
+
+/// Where imports come from: the world, passed in.
+pub trait Resolver {
+    /// The file that `path`, written in a `use` of the file `importer` (an [`Source::id`],
+    /// or the name given to [`check_source`]), refers to; the error is the message shown
+    /// at the path.
+    fn resolve(&self, importer: &str, path: &str) -> Result<Source, String>;
+
+    /// The id of the top-level file called `name` (for cycle detection).
+    fn identify(&self, name: &str) -> String {
+        name.to_string()
+    }
+}
+
+/// Imports from files held in memory, by name; paths are relative to the importing
+/// file's name (`a/b.deriv` importing `../c.deriv` reads `c.deriv`). Nothing may leave
+/// the root.
+#[derive(Clone, Debug, Default)]
+pub struct MemoryResolver {
+    files: HashMap<String, String>,
+}
+
+impl MemoryResolver {
+    /// No files.
+    pub fn new() -> MemoryResolver {
+        MemoryResolver::default()
+    }
+
+    /// Adds (or replaces) the file `name`.
+    pub fn insert(&mut self, name: &str, text: &str) {
+        self.files
+            .insert(normalise(name).unwrap_or_default(), text.to_string());
+    }
+}
+
+/// `a/./b/../c` → `a/c`; `None` when it climbs above the root or is absolute.
+fn normalise(path: &str) -> Option<String> {
+    if path.starts_with('/') {
+        return None;
+    }
+    let mut parts: Vec<&str> = Vec::new();
+    for p in path.split('/') {
+        match p {
+            "" | "." => {}
+            ".." => {
+                parts.pop()?;
+            }
+            p => parts.push(p),
+        }
+    }
+    Some(parts.join("/"))
+}
+
+impl Resolver for MemoryResolver {
+    fn resolve(&self, importer: &str, path: &str) -> Result<Source, String> {
+        if path.starts_with('/') {
+            return Err(format!(
+                "`use` takes a path relative to the importing file, not the absolute path \"{path}\""
+            ));
+        }
+        let dir = importer.rsplit_once('/').map_or("", |(d, _)| d);
+        let joined = if dir.is_empty() {
+            path.to_string()
+        } else {
+            format!("{dir}/{path}")
+        };
+        let id = normalise(&joined).ok_or_else(|| {
+            format!("\"{path}\" is outside the folder being checked; imports must stay inside it")
+        })?;
+        let text = self
+            .files
+            .get(&id)
+            .ok_or_else(|| format!("cannot read \"{path}\": no such file"))?;
+        Ok(Source {
+            display: id.rsplit('/').next().unwrap_or(&id).to_string(),
+            id,
+            text: text.clone(),
+        })
+    }
+
+    fn identify(&self, name: &str) -> String {
+        normalise(name).unwrap_or_else(|| name.to_string())
+    }
+}
+
+/// What an imported file offers: the verified claims by label.
+#[derive(Clone, Debug, Default)]
+pub struct Exports {
+    /// Label → the equations `lhs − rhs = 0` of that claim, each with the conditions it
+    /// was derived under (divisors nonzero, arguments of `ln` positive, radicands ≥ 0).
+    pub claims: HashMap<String, Vec<(Rat, Vec<Condition>)>>,
+    /// The signs the file declares for its symbols (its claims hold under them).
+    pub signs: HashMap<String, crate::normal::Sign>,
+    /// The file's unknowns (and `time` symbols): they cannot be instantiated.
+    pub unknowns: Vec<String>,
+    /// The first input error of the file, if it has one.
+    pub error: Option<String>,
+}
+
+/// Resolves `use` imports for one top-level file: cycles, a cache, the settings.
+pub struct Loader<'o> {
+    resolver: &'o dyn Resolver,
+    /// Files being checked, outermost first (for cycles): id and display name.
+    stack: Vec<(String, String)>,
+    cache: HashMap<String, Exports>,
+    /// Settings.
+    pub opts: &'o Options,
+}
+
+impl Loader<'_> {
+    /// The exports of `path`, written in the file `importer`, checking it if needed.
+    pub fn import(&mut self, importer: &str, path: &str) -> Result<Exports, String> {
+        let src = self.resolver.resolve(importer, path)?;
+        if let Some(i) = self.stack.iter().position(|(id, _)| *id == src.id) {
+            let chain: Vec<&str> = self.stack[i..]
+                .iter()
+                .map(|(_, d)| d.as_str())
+                .chain(std::iter::once(src.display.as_str()))
+                .collect();
+            return Err(format!("import cycle: {}", chain.join(" → ")));
+        }
+        if let Some(e) = self.cache.get(&src.id) {
+            return Ok(e.clone());
+        }
+        self.stack.push((src.id.clone(), src.display.clone()));
+        let (_, exports) = check_in(&src.id, &src.text, self);
+        self.stack.pop();
+        self.cache.insert(src.id, exports.clone());
+        Ok(exports)
+    }
+}
+
+/// Checks one file's text with `loader` for its imports.
+fn check_in(name: &str, src: &str, loader: &mut Loader<'_>) -> (FileReport, Exports) {
+    let mut report = FileReport {
+        path: name.to_string(),
+        source: src.to_string(),
+        ..FileReport::default()
+    };
+    let ast = match parse_file(src, &loader.opts.parse) {
+        Ok(f) => f,
+        Err(e) => {
+            report.input_error = true;
+            report.diagnostics.push(Diagnostic::error(
+                "E0001",
+                format!("syntax error: {}", e.message),
+                e.span,
+                "",
+            ));
+            return (report, Exports::default());
+        }
+    };
+    Checker::new(report, name.to_string(), loader).run(ast)
+}
+
+/// Checks the derivation `text`, called `name` (imports resolve relative to it through
+/// `resolver`): every statement and link, as data. Never fails and never panics: bad
+/// input is reported in the [`FileReport`].
+pub fn check_source(
+    name: &str,
+    text: &str,
+    options: &Options,
+    resolver: &dyn Resolver,
+) -> FileReport {
+    let display = name.rsplit(['/', '\\']).next().unwrap_or(name).to_string();
+    let mut loader = Loader {
+        resolver,
+        stack: vec![(resolver.identify(name), display)],
+        cache: HashMap::new(),
+        opts: options,
+    };
+    check_in(name, text, &mut loader).0
+}

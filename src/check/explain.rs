@@ -1,0 +1,311 @@
+//! Explaining a link that does not verify: a refutation (only where it holds in every
+//! situation the facts in scope allow, with a checked counterexample), the unknowns no
+//! fact determines, or why rigor can decide neither way.
+
+use super::report::cite;
+use super::solve::{apply_steps, unknown_name, Fact};
+use super::step::Reduced;
+use super::walk::{unknown_atom, Checker};
+use crate::clock::Deadline;
+use crate::decide::Verdict;
+use crate::diag::Diagnostic;
+use crate::lower::Condition;
+use crate::normal::atom::{self, AtomId};
+use crate::normal::print::plain;
+use crate::normal::Rat;
+use crate::syntax::ast::Span;
+
+impl Checker<'_, '_> {
+    /// A failing `=` step may be called false only if it fails in some situation the
+    /// signs and all the facts in scope allow. When the facts could make it hold, or
+    /// still tie the quantities its difference is made of, the answer is "not verified"
+    /// and this says why; otherwise the two sides reduced by every fact in scope, for
+    /// the refutation to work on.
+    pub(super) fn unrefuted(
+        &self,
+        red: &Reduced,
+        restricted: bool,
+        span: Span,
+        deadline: Option<Deadline>,
+    ) -> Result<Option<(Rat, Rat)>, Diagnostic> {
+        let signs = &self.env.signs;
+        let is_unknown = |x: AtomId| unknown_atom(&self.scope, x);
+        let elim = |facts: &[Fact], params: bool| {
+            super::solve::eliminate_all(&red.diff, facts, &is_unknown, signs, deadline, params).ok()
+        };
+        let not_verified = |headline: String, notes: Vec<String>| {
+            let mut d = Diagnostic::error("E0302", headline, span, "not verified");
+            d.notes = notes;
+            d
+        };
+        let Some(full) = elim(&red.scope, true) else {
+            return Ok(None);
+        };
+        let differs = || elim(&red.used, true).map(|r| r.0) != Some(full.0.clone());
+        if restricted && (full.0.is_zero() || differs()) {
+            let why = if full.0.is_zero() {
+                "it follows from the facts in scope, but not from those cited"
+            } else {
+                "it does not follow from the facts cited, and the other facts in scope bear on it"
+            };
+            return Err(not_verified(
+                format!("not verified from the facts cited: {why}"),
+                vec!["cite every fact the step needs in `by [..]`, or drop `by [..]`".into()],
+            ));
+        }
+        if full.0.is_zero() {
+            return Err(not_verified(
+                "not verified: rigor could not settle this step with the facts in scope".into(),
+                Vec::new(),
+            ));
+        }
+        // Unknowns only first (the sides read as written); parameters fixed by the facts
+        // only when the facts still tie the difference's quantities.
+        let mut tied = Vec::new();
+        for (target, steps, left) in [elim(&red.scope, false), Some(full)].into_iter().flatten() {
+            tied = tied_atoms(&target, &left, &is_unknown, signs);
+            if tied.is_empty() {
+                let reduce = |r: &Rat| apply_steps(r, &steps, signs);
+                return Ok(match (reduce(&red.a), reduce(&red.b)) {
+                    (Ok(x), Ok(y)) => Some((x, y)),
+                    _ => None,
+                });
+            }
+        }
+        let Some((target, _, left)) = elim(&red.scope, true) else {
+            return Ok(None);
+        };
+        Err(not_verified(
+            tied_headline(&tied, &left),
+            vec![
+                format!(
+                    "after using the facts, left − right = {}",
+                    short(&plain(&target))
+                ),
+                format!(
+                    "if the facts determine {}, declare {} with `unknowns` so that rigor solves for {}",
+                    atom_names(&tied),
+                    them(&tied),
+                    them(&tied)
+                ),
+            ],
+        ))
+    }
+
+    /// The diagnostic of an `=` link that does not verify. `sides`: the sides reduced
+    /// by every fact in scope, when a refutation may be tried on them.
+    pub(super) fn not_equal(
+        &self,
+        red: &Reduced,
+        sides: Option<(Rat, Rat)>,
+        span: Span,
+        defined: &[Condition],
+    ) -> Diagnostic {
+        let (ra, rb) = sides.unwrap_or_else(|| (red.ra.clone(), red.rb.clone()));
+        let using = if red.via.is_empty() {
+            String::new()
+        } else {
+            format!(" (after using {})", cite(&red.via))
+        };
+        let mut notes = vec![
+            format!("left side:  {}", short(&plain(&red.a))),
+            format!("right side: {}", short(&plain(&red.b))),
+        ];
+        if !red.via.is_empty() {
+            notes.push(
+                format!(
+                    "with the facts{using}: left {} , right {}",
+                    plain(&ra),
+                    plain(&rb)
+                )
+                .replace(" ,", ","),
+            );
+        }
+        let with_notes = |mut d: Diagnostic, extra: Vec<String>| {
+            d.notes = notes.iter().cloned().chain(extra).collect();
+            d
+        };
+        if red.timed_out() {
+            let d = Diagnostic::error(
+                "E0902",
+                "not verified: the claim ran out of its time budget (see --timeout)",
+                span,
+                "undecided",
+            );
+            return with_notes(d, Vec::new());
+        }
+        if let Some(e) = red.elim.as_ref().filter(|e| !e.stuck.is_empty()) {
+            let (d, extra) = self.undetermined(&e.stuck, &e.target, (&ra, &rb), span);
+            return with_notes(d, extra);
+        }
+        match crate::decide::decide_where(&ra, &rb, &self.env.signs, defined) {
+            Verdict::NotEqual {
+                diagnosis,
+                counterexample,
+                ..
+            } => {
+                let label = diagnosis.unwrap_or_else(|| "the two sides differ".into());
+                let d = Diagnostic::error(
+                    "E0301",
+                    format!("this step does not hold{using}"),
+                    span,
+                    &label,
+                );
+                let extra = counterexample.map(|c| {
+                    if c.values.is_empty() {
+                        format!("the left side is {}, the right side {}", c.lhs, c.rhs)
+                    } else {
+                        format!(
+                            "counterexample: at {} the left side is {} and the right side {}",
+                            c.assignment(),
+                            c.lhs,
+                            c.rhs
+                        )
+                    }
+                });
+                with_notes(d, extra.into_iter().collect())
+            }
+            Verdict::Undecided { why } => {
+                let d = Diagnostic::error(
+                    "E0302",
+                    format!("not verified{using}: rigor can neither prove nor refute this step"),
+                    span,
+                    "undecided",
+                );
+                with_notes(d, vec![why])
+            }
+            Verdict::Equal => with_notes(
+                Diagnostic::error("E0302", "not verified", span, ""),
+                Vec::new(),
+            ),
+        }
+    }
+
+    /// Unknowns that no fact in scope determines: which, and (when a fact gives one only
+    /// through a power) how to declare it so that rigor takes the root.
+    fn undetermined(
+        &self,
+        stuck: &[AtomId],
+        target: &Rat,
+        (ra, rb): (&Rat, &Rat),
+        span: Span,
+    ) -> (Diagnostic, Vec<String>) {
+        let facts: Vec<Fact> = self.facts.iter().map(|k| k.fact.clone()).collect();
+        let mut headline = format!("not verified: nothing in scope determines {}", names(stuck));
+        let mut powers = Vec::new();
+        for u in stuck {
+            if let Some((fact, n)) = super::solve::power_only(&facts, *u, &self.env.signs) {
+                let name = unknown_name(*u);
+                headline = format!("not verified: {fact} gives {name} only through {name}^{n}");
+                powers.push(format!(
+                    "rigor takes the principal root only of an unknown declared positive: `symbols {name} > 0` before `unknowns {name}`"
+                ));
+            }
+        }
+        let root_missing = !powers.is_empty();
+        let d = Diagnostic::error(
+            "E0302",
+            headline,
+            span,
+            if root_missing {
+                "which root is meant?"
+            } else {
+                "a fact may be missing"
+            },
+        );
+        let mut notes = vec![format!(
+            "after eliminating what the facts give, left − right = {}",
+            plain(target)
+        )];
+        if root_missing {
+            notes.extend(powers);
+        } else {
+            notes.push(format!(
+                "a fact about {} was needed but never given (or `by [..]` left it out)",
+                names(stuck)
+            ));
+        }
+        if let Some(hint) = crate::decide::diagnose(ra, rb, target)
+            .filter(|h| !root_missing && !h.starts_with("the two sides differ by"))
+        {
+            notes.push(format!("if {} can take any value, {hint}", names(stuck)));
+        }
+        (d, notes)
+    }
+}
+
+/// "not verified: the facts in scope ([IG]) relate a, b, …".
+fn tied_headline(tied: &[AtomId], left: &[Fact]) -> String {
+    let mut which: Vec<&str> = left
+        .iter()
+        .filter(|f| {
+            tied.iter()
+                .any(|a| crate::normal::subst::depends_on(&f.value, *a))
+        })
+        .map(|f| f.name.as_str())
+        .collect();
+    which.dedup();
+    format!(
+        "not verified: the facts in scope ({}) relate {}, so rigor cannot show that this step fails",
+        which.join(", "),
+        atom_names(tied)
+    )
+}
+
+fn atom_names(atoms: &[AtomId]) -> String {
+    atoms
+        .iter()
+        .map(|a| crate::normal::print::atom_plain(&atom::get(*a)))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn them(atoms: &[AtomId]) -> &'static str {
+    if atoms.len() == 1 {
+        "it"
+    } else {
+        "them"
+    }
+}
+
+/// The quantities of `target` (symbols, moments) that the facts left over still tie.
+fn tied_atoms(
+    target: &Rat,
+    left: &[Fact],
+    is_unknown: &dyn Fn(AtomId) -> bool,
+    signs: &crate::normal::Assumptions,
+) -> Vec<AtomId> {
+    let constrained = super::solve::constrained_atoms(left, is_unknown, signs);
+    let mut mine = Vec::new();
+    crate::decide::symbols_in(target, &mut mine);
+    mine.extend(
+        target
+            .atoms()
+            .into_iter()
+            .filter(|a| matches!(&*atom::get(*a), crate::normal::Atom::Moment(..))),
+    );
+    mine.into_iter()
+        .filter(|a| constrained.contains(a) && !is_unknown(*a))
+        .collect()
+}
+
+/// A normal form for a diagnostic: very long ones are cut, with their length said.
+pub(super) fn short(s: &str) -> String {
+    const MAX: usize = 2000;
+    if s.len() <= MAX {
+        return s.to_string();
+    }
+    let mut cut = MAX;
+    while !s.is_char_boundary(cut) {
+        cut -= 1;
+    }
+    format!("{} … ({} characters in all)", &s[..cut], s.len())
+}
+
+/// Unknowns by name, comma-separated.
+pub(super) fn names(ids: &[AtomId]) -> String {
+    ids.iter()
+        .map(|a| unknown_name(*a))
+        .collect::<Vec<_>>()
+        .join(", ")
+}

@@ -1,0 +1,380 @@
+//! Links other than `=`: `!=`, `<`, `<=`, `>`, `>=` (verified when the sign of the
+//! difference follows from the declared signs, after the facts are used) and `~=`
+//! (FORMAT.md §3: the ratio rounds to 1 at the precision of the one number written).
+
+use super::report::{Justification, Status};
+use super::signs::{describe, sign_of};
+use super::step::{LinkInput, Reduced};
+use super::walk::{unknown_atom, Checker};
+use crate::decide::{decide, find_counterexample, Verdict};
+use crate::diag::Diagnostic;
+use crate::interval::Prec;
+use crate::normal::atom::{self, AtomId};
+use crate::normal::print::plain;
+use crate::normal::{Rat, Sign, Q};
+use crate::syntax::ast::{BinOp, Expr, ExprKind, RelOp, Span};
+use num_bigint::BigInt;
+use num_traits::{One, Signed};
+use std::collections::HashMap;
+
+impl Checker<'_, '_> {
+    /// `!=`: verified when the signs show `lhs − rhs` nonzero.
+    pub(super) fn decide_ne(
+        &self,
+        red: &Reduced,
+        span: Span,
+        conditions: Vec<String>,
+    ) -> Result<Status, Diagnostic> {
+        if red.target().is_zero() {
+            return Err(Diagnostic::error(
+                "E0303",
+                "the two sides are equal, so `!=` is false",
+                span,
+                "",
+            ));
+        }
+        let signs = &self.env.signs;
+        let d = red
+            .ra
+            .sub(&red.rb)
+            .map_err(|e| Diagnostic::error("E0101", e.to_string(), span, ""))?;
+        if sign_of(&d, signs).is_nonzero() {
+            return Ok(Status::Verified {
+                how: Justification::Signs(red.via.clone()),
+                side_conditions: conditions,
+            });
+        }
+        let mut diag = Diagnostic::error(
+            "E0303",
+            "not verified: the declared signs do not show that the sides differ",
+            span,
+            "",
+        )
+        .note(format!(
+            "left − right = {}, which may be zero for some allowed values",
+            plain(&d)
+        ));
+        if let Verdict::NotEqual { .. } = decide(&red.ra, &red.rb, signs) {
+            diag.notes.push(
+                "the sides are not identical, but `!=` claims they differ for every allowed value"
+                    .into(),
+            );
+        }
+        Err(diag)
+    }
+
+    /// `<`, `<=`, `>`, `>=`: verified when the sign of `lhs − rhs` follows from the signs.
+    pub(super) fn decide_order(
+        &self,
+        op: RelOp,
+        red: &Reduced,
+        span: Span,
+        conditions: Vec<String>,
+    ) -> Result<Status, Diagnostic> {
+        let signs = &self.env.signs;
+        let d = red
+            .ra
+            .sub(&red.rb)
+            .map_err(|e| Diagnostic::error("E0101", e.to_string(), span, ""))?;
+        let sign = sign_of(&d, signs);
+        let ok = match op {
+            RelOp::Lt => sign == Sign::Neg,
+            RelOp::Le => sign.is_nonpos(),
+            RelOp::Gt => sign == Sign::Pos,
+            _ => sign.is_nonneg(),
+        };
+        if ok {
+            return Ok(Status::Verified {
+                how: Justification::Signs(red.via.clone()),
+                side_conditions: conditions,
+            });
+        }
+        let mut diag = Diagnostic::error(
+            "E0303",
+            format!("not verified: `{op}` does not follow from the declared signs"),
+            span,
+            "",
+        )
+        .note(format!("left − right = {}", plain(&d)));
+        if let Some(e) = red.elim.as_ref().filter(|e| !e.stuck.is_empty()) {
+            diag.notes.push(format!(
+                "the facts do not determine {}",
+                super::explain::names(&e.stuck)
+            ));
+        }
+        // "False for some values" only where no fact in scope ties those values.
+        let violated = if self.facts_tie(&d, red) {
+            None
+        } else {
+            violation(&red.ra, &red.rb, op, signs)
+        };
+        match violated {
+            Some(c) => {
+                diag.message =
+                    format!("`{op}` is false for some values allowed by the declared signs");
+                diag.notes.push(c);
+            }
+            None => diag.notes.push(format!("its sign is {}", describe(sign))),
+        }
+        Err(diag)
+    }
+
+    /// Whether facts in scope, left over once the unknowns are eliminated, still relate
+    /// the quantities of `d` (so a point chosen from the signs alone may break them).
+    fn facts_tie(&self, d: &Rat, red: &Reduced) -> bool {
+        let signs = &self.env.signs;
+        let is_unknown = |x: AtomId| unknown_atom(&self.scope, x);
+        let steps = red.elim.as_ref().map_or(&[][..], |e| &e.steps[..]);
+        let left: Vec<super::solve::Fact> = red
+            .scope
+            .iter()
+            .filter_map(|f| {
+                super::solve::apply_steps(&f.value, steps, signs)
+                    .ok()
+                    .filter(|v| !v.is_zero())
+                    .map(|value| super::solve::Fact {
+                        value,
+                        name: f.name.clone(),
+                    })
+            })
+            .collect();
+        let constrained = super::solve::constrained_atoms(&left, &is_unknown, signs);
+        let mut mine = Vec::new();
+        crate::decide::symbols_in(d, &mut mine);
+        mine.iter().any(|a| constrained.contains(a))
+    }
+
+    /// `~=`: each side's value (unknowns and fixed parameters replaced by the facts),
+    /// then their ratio against the precision written.
+    pub(super) fn decide_approx(
+        &self,
+        input: &LinkInput<'_>,
+        red: &Reduced,
+        conditions: Vec<String>,
+    ) -> Result<Status, Diagnostic> {
+        let signs = &self.env.signs;
+        let is_unknown = |x: AtomId| unknown_atom(&self.scope, x);
+        let value = |r: &Rat| {
+            super::solve::reduce_fully(r, &red.used, &is_unknown, signs, input.deadline)
+                .unwrap_or_else(|_| r.clone())
+        };
+        let (va, vb) = (value(&red.a), value(&red.b));
+        self.approx(&va, &vb, &input.link.rhs, input.span, conditions)
+    }
+
+    fn approx(
+        &self,
+        a: &Rat,
+        b: &Rat,
+        rhs: &Expr,
+        span: Span,
+        conditions: Vec<String>,
+    ) -> Result<Status, Diagnostic> {
+        let (c, ulp) = literal_precision(rhs, &self.report.source)
+            .map_err(|why| Diagnostic::error("E0304", why, span, ""))?;
+        let Ok(ratio) = a.div(b) else {
+            return Err(Diagnostic::error(
+                "E0304",
+                "the right side of `~=` is zero",
+                span,
+                "",
+            ));
+        };
+        // A/B must be a number; then A ≈ B when |c·A/B − c| ≤ ulp/2.
+        let mut sy = Vec::new();
+        crate::decide::symbols_in(&ratio, &mut sy);
+        if !sy.is_empty() {
+            return Err(Diagnostic::error(
+                "E0304",
+                format!(
+                    "`~=` is not verified: the ratio of the sides, {}, is not a number",
+                    plain(&ratio)
+                ),
+                span,
+                "",
+            ));
+        }
+        let point = HashMap::new();
+        let mut ev = crate::decide::Evaluator::new(&point);
+        ev.prec = Prec::new(128);
+        let half = &ulp / Q::from_integer(BigInt::from(2));
+        let ci = crate::interval::Interval::point(c.clone());
+        let ratio_value = ev.rat(&ratio);
+        let err = ratio_value
+            .as_ref()
+            .and_then(|r| r.mul(&ci, ev.prec)?.sub(&ci, ev.prec)?.abs());
+        match err {
+            Some(e) if e.hi() <= &half => Ok(Status::Verified {
+                how: Justification::Approx,
+                side_conditions: conditions,
+            }),
+            Some(e) if e.lo() > &half => {
+                let scaled = ratio_value.as_ref().and_then(|r| r.mul(&ci, ev.prec));
+                Err(Diagnostic::error(
+                    "E0304",
+                    format!(
+                        "`~=` does not hold at the precision written: the exact ratio is {}",
+                        plain(&ratio)
+                    ),
+                    span,
+                    "not this close",
+                )
+                .note(format!(
+                    "left / right ≈ {}; so where the right side says {}, the left side is ≈ {}, which does not round to {} at the precision written",
+                    ratio_value.map_or_else(|| "?".into(), |r| r.to_decimal_string(6)),
+                    show(&c),
+                    scaled.map_or_else(|| "?".into(), |r| r.to_decimal_string(6)),
+                    show(&c)
+                )))
+            }
+            _ => Err(Diagnostic::error(
+                "E0302",
+                "`~=` is not verified: rigor could not bound the ratio precisely enough",
+                span,
+                "undecided",
+            )),
+        }
+    }
+}
+
+/// A checked point where `a op b` is false, described.
+fn violation(a: &Rat, b: &Rat, op: RelOp, signs: &crate::normal::Assumptions) -> Option<String> {
+    // Reuse the counterexample search on `a` against `b`, then test the relation there.
+    let c = find_counterexample(a, b, signs)?;
+    let point: HashMap<AtomId, Q> = c
+        .values
+        .iter()
+        .map(|(n, q)| (atom::sym(n), q.clone()))
+        .collect();
+    let mut ev = crate::decide::Evaluator::new(&point);
+    let d = ev.rat(&a.sub(b).ok()?)?;
+    let zero = Q::from_integer(0.into());
+    let false_there = match op {
+        RelOp::Lt => !d.is_negative() && (d.is_positive() || d.lo() >= &zero),
+        RelOp::Le => d.is_positive(),
+        RelOp::Gt => d.is_negative() || d.hi() <= &zero,
+        _ => d.is_negative(),
+    };
+    false_there.then(|| {
+        format!(
+            "at {} the left side is {} and the right side {}",
+            c.assignment(),
+            c.lhs,
+            c.rhs
+        )
+    })
+}
+
+fn show(q: &Q) -> String {
+    if q.denom().is_one() {
+        return q.numer().to_string();
+    }
+    // Decimal form of a terminating fraction, else p/q.
+    let mut d = q.denom().clone();
+    let mut k = 0usize;
+    let two = BigInt::from(2);
+    let five = BigInt::from(5);
+    let zero = BigInt::from(0);
+    while (&d % &two) == zero || (&d % &five) == zero {
+        if (&d % &two) == zero {
+            d /= &two;
+        } else {
+            d /= &five;
+        }
+        k += 1;
+        if k > 60 {
+            break;
+        }
+    }
+    if !d.is_one() {
+        return format!("{}/{}", q.numer(), q.denom());
+    }
+    let scaled = q * Q::from_integer(BigInt::from(10).pow(k as u32));
+    let n = scaled.to_integer();
+    let s = n.abs().to_string();
+    let s = format!("{:0>width$}", s, width = k + 1);
+    let (i, f) = s.split_at(s.len() - k);
+    let f = f.trim_end_matches('0');
+    let sign = if q.is_negative() { "-" } else { "" };
+    if f.is_empty() {
+        format!("{sign}{i}")
+    } else {
+        format!("{sign}{i}.{f}")
+    }
+}
+
+/// The one number written on the right side of `~=` and the unit of its last written
+/// digit: the side must be that number times symbols (`0.71 R`, `-9.8`, `0.6 m L^2`);
+/// anything else is refused rather than guessed at (`2 * 0.30 R`, `1/0.3`).
+fn literal_precision(e: &Expr, src: &str) -> Result<(Q, Q), String> {
+    let mut found = Vec::new();
+    let shape = number_times_symbols(e, src, false, false, &mut found);
+    match (shape, found.as_slice()) {
+        (true, [(q, ulp, false)]) => Ok((q.clone(), ulp.clone())),
+        _ => Err(
+            "the right side of `~=` must be one written number times symbols (`0.71 R`), whose precision says how close; write the number out (`0.60 R`, not `2 * 0.30 R`)"
+                .into(),
+        ),
+    }
+}
+
+/// Whether `e` is a product or quotient of symbols and numbers; collects each number
+/// with its precision and whether it divides.
+fn number_times_symbols(
+    e: &Expr,
+    src: &str,
+    neg: bool,
+    divides: bool,
+    found: &mut Vec<(Q, Q, bool)>,
+) -> bool {
+    match &e.kind {
+        ExprKind::Num(q) => {
+            let Some(ulp) = src.get(e.span.start..e.span.end).and_then(ulp_of) else {
+                return false;
+            };
+            found.push((if neg { -q.clone() } else { q.clone() }, ulp, divides));
+            true
+        }
+        ExprKind::Sym(_) | ExprKind::Pi => true,
+        ExprKind::Neg(a) => number_times_symbols(a, src, !neg, divides, found),
+        ExprKind::Bin(BinOp::Mul, a, b) => {
+            number_times_symbols(a, src, neg, divides, found)
+                && number_times_symbols(b, src, false, divides, found)
+        }
+        ExprKind::Bin(BinOp::Div, a, b) => {
+            number_times_symbols(a, src, neg, divides, found)
+                && number_times_symbols(b, src, false, !divides, found)
+        }
+        // A power or a function of symbols only (`R^2`, `sqrt(g/L)`).
+        ExprKind::Bin(BinOp::Pow, base, _) => !has_number(base),
+        ExprKind::Call(_, args) => !args.iter().any(has_number),
+        ExprKind::Bin(..) => false,
+    }
+}
+
+fn has_number(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Num(_) => true,
+        ExprKind::Sym(_) | ExprKind::Pi => false,
+        ExprKind::Neg(a) => has_number(a),
+        ExprKind::Bin(_, a, b) => has_number(a) || has_number(b),
+        ExprKind::Call(_, args) => args.iter().any(has_number),
+    }
+}
+
+/// `0.71` → 1/100, `1.5e-3` → 1/10000, `3` → 1.
+fn ulp_of(text: &str) -> Option<Q> {
+    let t = text.trim();
+    let (mant, exp) = match t.find(['e', 'E']) {
+        Some(i) => (&t[..i], t[i + 1..].parse::<i32>().ok()?),
+        None => (t, 0),
+    };
+    let decimals = mant.split_once('.').map_or(0, |(_, f)| f.len()) as i32;
+    let k = decimals - exp;
+    let ten = BigInt::from(10);
+    Some(if k >= 0 {
+        Q::new(BigInt::one(), ten.pow(k as u32))
+    } else {
+        Q::from_integer(ten.pow((-k) as u32))
+    })
+}

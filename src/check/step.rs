@@ -1,0 +1,293 @@
+//! Deciding one link `lhs op rhs` (FORMAT.md §3): `where` substitutions, identity,
+//! elimination of unknowns with the facts in scope, side conditions, and the verdict
+//! for each relation. Explaining a failure lives in `explain.rs`, inequalities and
+//! `~=` in `relations.rs`.
+
+use super::report::{Justification, Status};
+use super::solve::{apply_steps, contradiction, eliminate, Elimination, Fact};
+use super::walk::{unknown_atom, Checker, Known};
+use crate::clock::Deadline;
+use crate::diag::Diagnostic;
+use crate::lower::{Condition, Need};
+use crate::normal::atom::AtomId;
+use crate::normal::Rat;
+use crate::syntax::ast::{By, Link, RelOp, Span};
+use std::collections::HashSet;
+
+/// One link to decide, with what its claim gives it.
+pub(super) struct LinkInput<'a> {
+    /// The left side, as lowered (the previous expression of the chain).
+    pub lhs: &'a Rat,
+    /// The right side, as lowered.
+    pub rhs: &'a Rat,
+    /// The link as written (relation, right side, `by`).
+    pub link: &'a Link,
+    /// Where to report.
+    pub span: Span,
+    /// The claim's `where` substitutions.
+    pub subs: &'a [(AtomId, Rat)],
+    /// Conditions met while lowering both sides.
+    pub divisors: &'a [(Rat, Need)],
+    /// When the claim's time budget runs out.
+    pub deadline: Option<Deadline>,
+}
+
+impl LinkInput<'_> {
+    /// The `by [..]` of the link, if any.
+    pub fn by(&self) -> Option<&By> {
+        self.link.by.as_ref().map(|b| &b.0)
+    }
+
+    /// Whether `by [..]` names the facts the link may use.
+    pub fn restricted(&self) -> bool {
+        matches!(self.by(), Some(By::Labels(_)))
+    }
+}
+
+/// A link after the `where` substitutions and the facts have done their work.
+pub(super) struct Reduced {
+    /// The sides after `where`.
+    pub a: Rat,
+    /// The right side after `where`.
+    pub b: Rat,
+    /// `a − b`.
+    pub diff: Rat,
+    /// The facts the link may use, as kept.
+    pub allowed: Vec<Known>,
+    /// The same, after `where`.
+    pub used: Vec<Fact>,
+    /// Every fact in scope, after `where`.
+    pub scope: Vec<Fact>,
+    /// The elimination (none for an identity).
+    pub elim: Option<Elimination>,
+    /// The sides after the elimination's steps.
+    pub ra: Rat,
+    /// The right side after the elimination's steps.
+    pub rb: Rat,
+    /// The labels of the facts the elimination used, in order, each once.
+    pub via: Vec<String>,
+    /// The names of the facts the elimination used, as cited in `Fact::name`.
+    pub used_names: Vec<String>,
+}
+
+impl Reduced {
+    /// How an equality that holds was justified.
+    pub fn how(&self) -> Justification {
+        if self.via.is_empty() {
+            Justification::Identity
+        } else {
+            Justification::Facts(self.via.clone())
+        }
+    }
+
+    /// The difference after the elimination (zero when it holds).
+    pub fn target(&self) -> Rat {
+        self.elim
+            .as_ref()
+            .map_or_else(Rat::zero, |e| e.target.clone())
+    }
+
+    /// Whether the time budget ran out during the elimination.
+    pub fn timed_out(&self) -> bool {
+        self.elim.as_ref().is_some_and(|e| e.timed_out)
+    }
+}
+
+fn e0101(span: Span) -> impl Fn(crate::normal::NormError) -> Diagnostic {
+    move |e| Diagnostic::error("E0101", e.to_string(), span, "")
+}
+
+impl Checker<'_, '_> {
+    /// `r` with the claim's `where` substitutions applied, all at once.
+    pub(super) fn apply_where(&self, subs: &[(AtomId, Rat)], r: &Rat) -> Result<Rat, String> {
+        if subs.is_empty() {
+            return Ok(r.clone());
+        }
+        let map = |a: AtomId| subs.iter().find(|s| s.0 == a).map(|s| s.1.clone());
+        crate::normal::subst::Subst::new(&map, &self.env.signs)
+            .rat(r)
+            .map_err(|e| e.to_string())
+    }
+
+    /// Decides one link; a failure comes with its diagnostic.
+    pub(super) fn check_link(&mut self, input: &LinkInput<'_>) -> Result<Status, Diagnostic> {
+        self.conditions.clear();
+        let span = input.span;
+        let (a, b) = match (
+            self.apply_where(input.subs, input.lhs),
+            self.apply_where(input.subs, input.rhs),
+        ) {
+            (Ok(a), Ok(b)) => (a, b),
+            (Err(e), _) | (_, Err(e)) => {
+                return Err(Diagnostic::error(
+                    "E0101",
+                    format!("the `where` substitution fails: {e}"),
+                    span,
+                    "",
+                ))
+            }
+        };
+        let mut diff = a.sub(&b).map_err(e0101(span))?;
+        // Sines and cosines of related angles, rewritten in a common base angle.
+        if !diff.is_zero()
+            && crate::normal::trig::rebase(&diff, &self.env.signs).is_ok_and(|r| r.is_zero())
+        {
+            diff = Rat::zero();
+        }
+        // `by [..]` must name facts before this line, even where none is needed.
+        if input.restricted() && self.facts_for(input.by()).is_err() {
+            return Ok(Status::Error);
+        }
+        if diff.is_zero() && input.divisors.is_empty() && input.link.op == RelOp::Eq {
+            // An identity with nothing to assume: no facts needed.
+            return Ok(Status::Verified {
+                how: Justification::Identity,
+                side_conditions: Vec::new(),
+            });
+        }
+        let Some(red) = self.reduce(input, a, b, diff)? else {
+            return Ok(Status::Error);
+        };
+        self.refuse_contradictions(&red, span)?;
+        let (conditions, all_divs) = self.side_conditions(input, &red)?;
+        if let Some(c) = red.elim.as_ref().and_then(|e| e.contradiction.as_ref()) {
+            return Err(Diagnostic::error(
+                "E0306",
+                format!("the facts in scope contradict each other: after eliminating unknowns, {c} says a nonzero quantity is zero"),
+                span,
+                "checked against contradictory facts",
+            )
+            .note("nothing can be verified from contradictory facts; check the givens"));
+        }
+        match input.link.op {
+            RelOp::Eq => self.decide_eq(input, &red, conditions, all_divs),
+            RelOp::Ne => self.decide_ne(&red, span, conditions),
+            RelOp::Lt | RelOp::Le | RelOp::Gt | RelOp::Ge => {
+                self.decide_order(input.link.op, &red, span, conditions)
+            }
+            RelOp::Approx => self.decide_approx(input, &red, conditions),
+        }
+    }
+
+    /// The facts the link may use, the elimination of unknowns, and what it used.
+    /// `None`: `by [..]` names no fact (already reported).
+    fn reduce(
+        &self,
+        input: &LinkInput<'_>,
+        a: Rat,
+        b: Rat,
+        diff: Rat,
+    ) -> Result<Option<Reduced>, Diagnostic> {
+        let span = input.span;
+        let Ok(allowed) = self.facts_in(input.by()) else {
+            return Ok(None);
+        };
+        let after_where = |ks: &[Known]| -> Vec<Fact> {
+            ks.iter()
+                .filter_map(|k| {
+                    self.apply_where(input.subs, &k.fact.value)
+                        .ok()
+                        .map(|v| Fact {
+                            value: v,
+                            name: k.fact.name.clone(),
+                        })
+                })
+                .collect()
+        };
+        let used = after_where(&allowed);
+        let scope = after_where(&self.facts);
+        let signs = &self.env.signs;
+        let is_unknown = |x: AtomId| unknown_atom(&self.scope, x);
+        let elim = if diff.is_zero() {
+            None
+        } else {
+            let e = eliminate(&diff, &used, &is_unknown, signs, input.deadline);
+            Some(e.map_err(|e| match e {
+                crate::normal::NormError::DivisionByZero => Diagnostic::error(
+                    "E0305",
+                    "under the facts, this step divides by zero",
+                    span,
+                    "a denominator here is zero once the facts are used",
+                ),
+                e => Diagnostic::error("E0901", e.to_string(), span, ""),
+            })?)
+        };
+        let steps = elim.as_ref().map_or(&[][..], |e| &e.steps[..]);
+        let used_names: Vec<String> = steps
+            .iter()
+            .map(|s| s.fact.clone())
+            .chain(elim.as_ref().and_then(|e| e.multiple_of.clone()))
+            .collect();
+        let (ra, rb) = match (apply_steps(&a, steps, signs), apply_steps(&b, steps, signs)) {
+            (Ok(x), Ok(y)) => (x, y),
+            _ => (a.clone(), b.clone()),
+        };
+        let mut seen = HashSet::new();
+        let via = used_names
+            .iter()
+            .map(|f| {
+                f.trim_end_matches('\'')
+                    .trim_start_matches('[')
+                    .trim_end_matches(']')
+                    .to_string()
+            })
+            .filter(|x| seen.insert(x.clone()))
+            .collect();
+        Ok(Some(Reduced {
+            a,
+            b,
+            diff,
+            allowed,
+            used,
+            scope,
+            elim,
+            ra,
+            rb,
+            via,
+            used_names,
+        }))
+    }
+
+    /// Facts that contradict each other prove anything: refuse to use them.
+    fn refuse_contradictions(&self, red: &Reduced, span: Span) -> Result<(), Diagnostic> {
+        if red.via.is_empty() {
+            return Ok(());
+        }
+        match contradiction(&red.used, &self.env.signs) {
+            None => Ok(()),
+            Some(c) => Err(Diagnostic::error(
+                "E0306",
+                format!("the facts in scope contradict each other: {c}"),
+                span,
+                "checked against contradictory facts",
+            )
+            .note("nothing can be verified from contradictory facts; check the givens")),
+        }
+    }
+
+    /// `=`: verified when the difference vanishes once the facts are used; otherwise
+    /// refuted (where the facts in scope allow it) or explained.
+    fn decide_eq(
+        &mut self,
+        input: &LinkInput<'_>,
+        red: &Reduced,
+        conditions: Vec<String>,
+        all_divs: Vec<Condition>,
+    ) -> Result<Status, Diagnostic> {
+        if red.target().is_zero() {
+            self.conditions = all_divs;
+            return Ok(Status::Verified {
+                how: red.how(),
+                side_conditions: conditions,
+            });
+        }
+        // Undetermined unknowns are explained by `not_equal`; nothing is refuted then.
+        let stuck = red.elim.as_ref().is_some_and(|e| !e.stuck.is_empty());
+        let sides = if stuck || red.timed_out() {
+            None
+        } else {
+            self.unrefuted(red, input.restricted(), input.span, input.deadline)?
+        };
+        Err(self.not_equal(red, sides, input.span, &all_divs))
+    }
+}

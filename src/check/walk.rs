@@ -1,0 +1,424 @@
+//! The walk over a file: statements in order, declarations and scope, definitions and
+//! bodies, givens and constraints. Claims are in `claims.rs`, imports in `imports.rs`,
+//! deciding a link in `step.rs`.
+
+use super::entry::{Exports, Loader};
+use super::report::FileReport;
+use super::scope::{undeclared, Decl, Scope};
+use super::signs::sign_of;
+use super::solve::Fact;
+use crate::calculus::{self, Wrt};
+use crate::diag::{Diagnostic, Severity};
+use crate::lower::{build_body, sign_of_decl, Condition, Env, LowerError, Lowerer};
+use crate::normal::atom::{self, AtomId};
+use crate::normal::print::plain;
+use crate::normal::Rat;
+use crate::syntax::ast::{BodyDef, Chain, Expr, File, Item, Label, RelOp, Span, StmtKind};
+use std::collections::HashMap;
+
+/// A fact in scope.
+#[derive(Clone, Debug)]
+pub(super) struct Known {
+    /// The label it is cited by (`by [..]` selects on it), if any.
+    pub label: Option<String>,
+    /// The equation `value = 0` and how it is cited.
+    pub fact: Fact,
+    /// The conditions it holds under (divisors nonzero, arguments of `ln` positive,
+    /// radicands nonnegative), met while deriving it.
+    pub divisors: Vec<Condition>,
+}
+
+/// Walks one file.
+pub struct Checker<'l, 'o> {
+    pub(super) report: FileReport,
+    /// The file's name, as imports resolve relative to it.
+    pub(super) name: String,
+    pub(super) loader: &'l mut Loader<'o>,
+    pub(super) scope: Scope,
+    pub(super) env: Env,
+    pub(super) facts: Vec<Known>,
+    pub(super) labels: HashMap<String, Span>,
+    pub(super) exports: Exports,
+    body_coords: HashMap<String, Vec<String>>,
+    /// Set when lowering ran out of time (the link is undecided).
+    pub(super) timed_out: bool,
+    /// Byte offset of the start of every line, for line numbers.
+    line_starts: Vec<usize>,
+    /// The conditions the last verified link holds under (its own and those of the
+    /// facts it used): a claim that becomes a fact carries them.
+    pub(super) conditions: Vec<Condition>,
+}
+
+impl<'l, 'o> Checker<'l, 'o> {
+    /// A checker that will fill `report`.
+    pub fn new(report: FileReport, name: String, loader: &'l mut Loader<'o>) -> Checker<'l, 'o> {
+        Checker {
+            report,
+            name,
+            loader,
+            scope: Scope::default(),
+            env: Env::default(),
+            facts: Vec::new(),
+            labels: HashMap::new(),
+            exports: Exports::default(),
+            body_coords: HashMap::new(),
+            timed_out: false,
+            line_starts: Vec::new(),
+            conditions: Vec::new(),
+        }
+    }
+
+    pub(super) fn error(&mut self, code: &'static str, msg: String, span: Span, label: &str) {
+        self.report.input_error = true;
+        self.report
+            .diagnostics
+            .push(Diagnostic::error(code, msg, span, label));
+    }
+
+    pub(super) fn line(&self, span: Span) -> usize {
+        match self.line_starts.binary_search(&span.start) {
+            Ok(i) => i + 1,
+            Err(i) => i,
+        }
+    }
+
+    /// Checks every statement; returns the report and what the file exports.
+    pub fn run(mut self, file: File) -> (FileReport, Exports) {
+        self.line_starts = std::iter::once(0)
+            .chain(self.report.source.match_indices('\n').map(|(i, _)| i + 1))
+            .collect();
+        for item in &file.items {
+            if let Item::Stmt(st) = item {
+                self.statement(&st.kind, st.span);
+            }
+        }
+        self.report.ast = Some(file);
+        for (name, d) in &self.scope.names {
+            match d {
+                Decl::Symbol => {
+                    let sign = self.env.signs.declared(atom::sym(name));
+                    self.exports.signs.insert(name.clone(), sign);
+                }
+                Decl::Time => self.exports.unknowns.push(name.clone()),
+                _ => {}
+            }
+        }
+        self.exports
+            .unknowns
+            .extend(self.scope.unknowns.iter().cloned());
+        if self.report.input_error {
+            self.exports.error = self
+                .report
+                .diagnostics
+                .iter()
+                .find(|d| d.severity == Severity::Error)
+                .map(|d| d.message.clone());
+        }
+        (self.report, self.exports)
+    }
+
+    /// Reports undeclared names in `e`; true if all are declared.
+    pub(super) fn declared(&mut self, e: &Expr) -> bool {
+        let coords = self.body_coords.clone();
+        let one_body = (coords.len() == 1)
+            .then(|| coords.values().next().cloned())
+            .flatten();
+        let lookup = |n: &str| -> Option<Vec<String>> {
+            if n == "dm" && !coords.contains_key("dm") {
+                return one_body.clone();
+            }
+            coords.get(n).cloned()
+        };
+        let bad = undeclared(e, &self.scope, &lookup);
+        for (name, span) in &bad {
+            let hint = match self.scope.suggest(name) {
+                Some(s) => format!("did you mean `{s}`?"),
+                None => "declare it with `symbols`, `time` or `unknowns`".into(),
+            };
+            self.error("E0201", format!("undeclared symbol `{name}`"), *span, &hint);
+        }
+        bad.is_empty()
+    }
+
+    pub(super) fn lower(&mut self, e: &Expr, divisors: &mut Vec<Condition>) -> Option<Rat> {
+        if !self.declared(e) {
+            return None;
+        }
+        let mut lw = Lowerer::new(&self.env);
+        match lw.lower(e) {
+            Ok(v) => {
+                divisors.extend(lw.divisors.into_iter().map(|d| (d.value, d.need)));
+                Some(v)
+            }
+            Err(err) => {
+                self.lower_error(err);
+                None
+            }
+        }
+    }
+
+    fn lower_error(&mut self, e: LowerError) {
+        if e.timeout {
+            // Undecided, not bad input: the claim fails, the file is not malformed.
+            self.timed_out = true;
+            self.report.diagnostics.push(Diagnostic::error(
+                "E0902",
+                format!("not verified: {}", e.message),
+                e.span,
+                "undecided",
+            ));
+            return;
+        }
+        let code = if e.limit { "E0901" } else { "E0101" };
+        self.error(code, e.message, e.span, "");
+    }
+
+    fn declare(&mut self, name: &str, span: Span, d: Decl) -> bool {
+        if let Some(prev) = self.scope.names.get(name) {
+            let ok = matches!((prev, &d), (Decl::Symbol, Decl::Unknown));
+            if !ok {
+                self.error(
+                    "E0203",
+                    format!("`{name}` is already declared"),
+                    span,
+                    "declared again here",
+                );
+                return false;
+            }
+            return true;
+        }
+        if name == "t"
+            && !matches!(d, Decl::TimeVar)
+            && self.scope.names.get("t") == Some(&Decl::TimeVar)
+        {
+            self.error(
+                "E0203",
+                "`t` is the time variable declared by `time`".into(),
+                span,
+                "",
+            );
+            return false;
+        }
+        self.scope.names.insert(name.to_string(), d);
+        true
+    }
+
+    pub(super) fn new_label(&mut self, label: &Option<Label>) -> Option<String> {
+        let l = label.as_ref()?;
+        if let Some(prev) = self.labels.get(&l.name).copied() {
+            let line = self.line(prev);
+            self.error(
+                "E0202",
+                format!("duplicate label [{}]", l.name),
+                l.span,
+                &format!("[{}] was already used on line {line}", l.name),
+            );
+            return None;
+        }
+        self.labels.insert(l.name.clone(), l.span);
+        Some(l.name.clone())
+    }
+
+    pub(super) fn fact_name(&self, label: &Option<String>, span: Span) -> String {
+        match label {
+            Some(l) => format!("[{l}]"),
+            None => format!("line {}", self.line(span)),
+        }
+    }
+
+    fn statement(&mut self, kind: &StmtKind, span: Span) {
+        match kind {
+            StmtKind::Symbols { names, sign } => {
+                for n in names {
+                    if self.declare(&n.name, n.span, Decl::Symbol) {
+                        self.env.signs.set(atom::sym(&n.name), sign_of_decl(*sign));
+                    }
+                }
+            }
+            StmtKind::Time { names } => {
+                if !self.scope.names.contains_key("t") {
+                    self.scope.names.insert("t".into(), Decl::TimeVar);
+                }
+                for n in names {
+                    if self.declare(&n.name, n.span, Decl::Time) {
+                        self.env.time.insert(n.name.clone());
+                    }
+                }
+            }
+            StmtKind::Unknowns { names } => {
+                for n in names {
+                    if self.declare(&n.name, n.span, Decl::Unknown) {
+                        self.scope.unknowns.insert(n.name.clone());
+                    }
+                }
+            }
+            StmtKind::Units { decls } => {
+                for d in decls {
+                    if !self.scope.is_declared(&d.name.name) {
+                        let hint = self.scope.suggest(&d.name.name).map_or_else(
+                            || "declare it first".to_string(),
+                            |s| format!("did you mean `{s}`?"),
+                        );
+                        self.error(
+                            "E0201",
+                            format!("units for undeclared symbol `{}`", d.name.name),
+                            d.name.span,
+                            &hint,
+                        );
+                    }
+                }
+            }
+            StmtKind::Body { name, def } => self.body(name, def),
+            StmtKind::Let { name, value } => {
+                let mut divs = Vec::new();
+                let Some(v) = self.lower(value, &mut divs) else {
+                    return;
+                };
+                if self.declare(&name.name, name.span, Decl::Def) {
+                    self.env.defs.insert(name.name.clone(), v);
+                }
+            }
+            StmtKind::Given { label, chain } | StmtKind::Constraint { label, chain } => {
+                let is_constraint = matches!(kind, StmtKind::Constraint { .. });
+                let label = self.new_label(label);
+                self.given(label, chain, span, is_constraint);
+            }
+            StmtKind::Claim {
+                label,
+                chain,
+                where_,
+            } => {
+                let label = self.new_label(label);
+                self.claim(label, chain, where_, span);
+            }
+            StmtKind::Use {
+                labels,
+                path,
+                path_span,
+                with,
+            } => self.import(labels, path, *path_span, with),
+        }
+    }
+
+    /// `body B: …`: coordinates and their differentials are local to the statement.
+    fn body(&mut self, name: &crate::syntax::ast::Name, def: &BodyDef) {
+        if !self.declare(&name.name, name.span, Decl::Body) {
+            return;
+        }
+        let coords: Vec<String> = match def {
+            BodyDef::Concrete { ranges, .. } => ranges.iter().map(|r| r.var.name.clone()).collect(),
+            BodyDef::Abstract { coords, .. } => coords.iter().map(|c| c.name.clone()).collect(),
+        };
+        // Names inside the body statement: coordinates and their differentials are local.
+        let mut local = self.scope.clone();
+        for c in &coords {
+            local.names.insert(c.clone(), Decl::Symbol);
+            local.names.insert(format!("d{c}"), Decl::Symbol);
+        }
+        let exprs: Vec<&Expr> = match def {
+            BodyDef::Concrete { dm, ranges } => std::iter::once(dm)
+                .chain(ranges.iter().flat_map(|r| [&r.from, &r.to]))
+                .collect(),
+            BodyDef::Abstract { mass, .. } => vec![mass],
+        };
+        let saved = std::mem::replace(&mut self.scope, local);
+        let ok = exprs.iter().all(|e| self.declared(e));
+        self.scope = saved;
+        if !ok {
+            return;
+        }
+        match build_body(&name.name, def, &self.env) {
+            Ok(b) => {
+                self.env.bodies.insert(name.name.clone(), b);
+                self.body_coords.insert(name.name.clone(), coords);
+            }
+            Err(e) => self.lower_error(e),
+        }
+    }
+
+    fn given(&mut self, label: Option<String>, chain: &Chain, span: Span, constraint: bool) {
+        let mut divs = Vec::new();
+        let Some(mut prev) = self.lower(&chain.first, &mut divs) else {
+            return;
+        };
+        let name = self.fact_name(&label, span);
+        for link in &chain.links {
+            let Some(rhs) = self.lower(&link.rhs, &mut divs) else {
+                return;
+            };
+            if link.op == RelOp::Eq {
+                let value = match prev.sub(&rhs) {
+                    Ok(v) => v,
+                    Err(e) => {
+                        self.error("E0101", e.to_string(), link.span, "");
+                        return;
+                    }
+                };
+                if value.is_zero() {
+                    prev = rhs;
+                    continue;
+                }
+                if sign_of(&value, &self.env.signs).is_nonzero() {
+                    self.report.diagnostics.push(Diagnostic::error(
+                        "E0306",
+                        format!(
+                            "this fact is false under the declared signs: {} = {}",
+                            plain(&prev),
+                            plain(&rhs)
+                        ),
+                        link.span,
+                        "the two sides can never be equal",
+                    ));
+                    self.report.input_error = true;
+                }
+                let mut derivs = vec![value.clone()];
+                if constraint {
+                    // A constraint holds at all times: its unknowns are functions of time
+                    // too (F' is a new unknown), never constants.
+                    let time = self.env.time.clone();
+                    let unknowns = self.scope.unknowns.clone();
+                    let is_time = |b: &str| time.contains(b) || unknowns.contains(b);
+                    let wrt = Wrt {
+                        var: atom::sym("t"),
+                        time: Some(&is_time),
+                    };
+                    let mut cur = value.clone();
+                    for _ in 0..3 {
+                        match calculus::diff(&cur, &wrt, &self.env.signs) {
+                            Ok(d) if !d.is_zero() => {
+                                derivs.push(d.clone());
+                                cur = d;
+                            }
+                            _ => break,
+                        }
+                    }
+                }
+                for (k, v) in derivs.into_iter().enumerate() {
+                    self.facts.push(Known {
+                        label: label.clone(),
+                        fact: Fact {
+                            value: v,
+                            name: format!("{name}{}", "'".repeat(k)),
+                        },
+                        divisors: divs.clone(),
+                    });
+                }
+            }
+            prev = rhs;
+        }
+    }
+
+    pub(super) fn is_unknown(&self, a: AtomId) -> bool {
+        unknown_atom(&self.scope, a)
+    }
+}
+
+/// Whether atom `a` is an unknown: declared so, a `time` symbol or derivative, or one of
+/// those at an instant (`x'(T)`).
+pub(super) fn unknown_atom(scope: &Scope, a: AtomId) -> bool {
+    match &*atom::get(a) {
+        crate::normal::Atom::Sym(n) => scope.is_unknown(n),
+        crate::normal::Atom::At(n, _) => scope.is_unknown(n),
+        _ => false,
+    }
+}

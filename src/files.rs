@@ -1,0 +1,187 @@
+//! The file system, for the command line, tests and benchmarks: a [`Resolver`] that
+//! reads imports beside the importing file (never outside the folder being checked),
+//! and the walk over files and folders, two files at a time. The checker itself
+//! ([`crate::check_source`]) never touches the file system.
+
+use crate::check::{check_source, FileReport, Options, Resolver, Source};
+use crate::diag::Diagnostic;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+/// Reads imports from disk: relative to the importing file, inside `root`.
+#[derive(Clone, Debug)]
+pub struct FsResolver {
+    /// The folder imports must stay inside.
+    pub root: PathBuf,
+    /// Largest file read, in bytes.
+    pub max_file_size: u64,
+}
+
+impl Resolver for FsResolver {
+    fn resolve(&self, importer: &str, path: &str) -> Result<Source, String> {
+        let rel = Path::new(path);
+        if rel.is_absolute() {
+            return Err(format!(
+                "`use` takes a path relative to the importing file, not the absolute path \"{path}\""
+            ));
+        }
+        let from_dir = Path::new(importer).parent().unwrap_or(Path::new(""));
+        let joined = from_dir.join(rel);
+        let canon = joined
+            .canonicalize()
+            .map_err(|e| format!("cannot read \"{path}\": {e}"))?;
+        let root = self
+            .root
+            .canonicalize()
+            .unwrap_or_else(|_| self.root.clone());
+        if !canon.starts_with(&root) {
+            return Err(format!(
+                "\"{path}\" is outside the folder being checked; imports must stay inside it"
+            ));
+        }
+        let text =
+            read(&canon, self.max_file_size).map_err(|e| format!("cannot read \"{path}\": {e}"))?;
+        Ok(Source {
+            display: canon.file_name().map_or_else(
+                || canon.display().to_string(),
+                |f| f.to_string_lossy().into_owned(),
+            ),
+            id: canon.display().to_string(),
+            text,
+        })
+    }
+
+    fn identify(&self, name: &str) -> String {
+        Path::new(name)
+            .canonicalize()
+            .map_or_else(|_| name.to_string(), |p| p.display().to_string())
+    }
+}
+
+/// The text of `path`, at most `max` bytes of UTF-8.
+pub fn read(path: &Path, max: u64) -> Result<String, String> {
+    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if meta.len() > max {
+        return Err(format!(
+            "the file is {} bytes, more than the limit of {max} (see --max-file-size)",
+            meta.len()
+        ));
+    }
+    let bytes = std::fs::read(path).map_err(|e| e.to_string())?;
+    String::from_utf8(bytes).map_err(|e| {
+        format!(
+            "the file is not valid UTF-8 (invalid byte at offset {})",
+            e.utf8_error().valid_up_to()
+        )
+    })
+}
+
+fn collect(path: &Path, out: &mut Vec<(PathBuf, PathBuf)>, root: &Path) -> Result<(), String> {
+    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if meta.is_dir() {
+        let mut entries: Vec<PathBuf> = std::fs::read_dir(path)
+            .map_err(|e| e.to_string())?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .collect();
+        entries.sort();
+        for e in entries {
+            if e.is_dir() {
+                collect(&e, out, root)?;
+            } else if e.extension().is_some_and(|x| x == "deriv") {
+                out.push((e, root.to_path_buf()));
+            }
+        }
+    } else {
+        out.push((path.to_path_buf(), root.to_path_buf()));
+    }
+    Ok(())
+}
+
+fn unreadable(path: &Path, msg: String) -> FileReport {
+    FileReport {
+        path: path.display().to_string(),
+        input_error: true,
+        diagnostics: vec![Diagnostic {
+            severity: crate::diag::Severity::Error,
+            code: "E0002",
+            message: format!("cannot read {}: {msg}", path.display()),
+            primary: None,
+            notes: Vec::new(),
+        }],
+        ..FileReport::default()
+    }
+}
+
+/// Checks one file read from disk; its imports must stay inside `root`.
+pub fn check_file(path: &Path, root: &Path, opts: &Options) -> FileReport {
+    match read(path, opts.max_file_size) {
+        Err(e) => unreadable(path, e),
+        Ok(src) => {
+            let resolver = FsResolver {
+                root: root.to_path_buf(),
+                max_file_size: opts.max_file_size,
+            };
+            check_source(&path.display().to_string(), &src, opts, &resolver)
+        }
+    }
+}
+
+/// Checks files and folders (folders: every `.deriv` file inside, recursively), two at a
+/// time; the reports come back in a stable order (sorted by path within each argument).
+/// A file's imports must stay inside the folder given (or the file's own folder).
+pub fn check_paths(paths: &[PathBuf], opts: &Options) -> Vec<FileReport> {
+    let mut jobs: Vec<(PathBuf, PathBuf)> = Vec::new();
+    let mut early: Vec<(usize, FileReport)> = Vec::new();
+    for p in paths {
+        let root = if p.is_dir() {
+            p.clone()
+        } else {
+            p.parent()
+                .filter(|d| !d.as_os_str().is_empty())
+                .map_or_else(|| PathBuf::from("."), Path::to_path_buf)
+        };
+        if let Err(e) = collect(p, &mut jobs, &root) {
+            early.push((jobs.len(), unreadable(p, e)));
+        }
+    }
+    let results: Mutex<Vec<Option<FileReport>>> = Mutex::new(vec![None; jobs.len()]);
+    let next = Mutex::new(0usize);
+    let workers = std::thread::available_parallelism()
+        .map_or(2, |n| n.get())
+        .min(jobs.len().max(1));
+    std::thread::scope(|s| {
+        for _ in 0..workers {
+            s.spawn(|| loop {
+                let i = {
+                    let mut n = next.lock().unwrap_or_else(|e| e.into_inner());
+                    let i = *n;
+                    *n += 1;
+                    i
+                };
+                let Some((path, root)) = jobs.get(i) else {
+                    break;
+                };
+                let report = check_file(path, root, opts);
+                let mut r = results.lock().unwrap_or_else(|e| e.into_inner());
+                if let Some(slot) = r.get_mut(i) {
+                    *slot = Some(report);
+                }
+            });
+        }
+    });
+    let mut out: Vec<FileReport> = Vec::new();
+    let results = results.into_inner().unwrap_or_else(|e| e.into_inner());
+    let mut early = early.into_iter().peekable();
+    for (i, r) in results.into_iter().enumerate() {
+        while early.peek().is_some_and(|e| e.0 == i) {
+            if let Some(e) = early.next() {
+                out.push(e.1);
+            }
+        }
+        if let Some(r) = r {
+            out.push(r);
+        }
+    }
+    out.extend(early.map(|e| e.1));
+    out
+}
