@@ -23,6 +23,7 @@ pub mod clock;
 pub mod decide;
 pub mod diag;
 pub mod files;
+pub mod guard;
 pub mod interval;
 pub mod lower;
 pub mod normal;

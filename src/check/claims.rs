@@ -83,9 +83,22 @@ impl Checker<'_, '_> {
             };
             let mut all_divs = prev_divs.clone();
             all_divs.extend(divs.iter().cloned());
+            let lhs_expr = if i == 0 {
+                &chain.first
+            } else {
+                chain.links.get(i - 1).map_or(&chain.first, |l| &l.rhs)
+            };
+            // A fault for the guard's own tests: every right side "normalises" to the left.
+            let rhs = if self.loader.opts.corrupt_for_tests {
+                prev.clone()
+            } else {
+                rhs
+            };
             let input = LinkInput {
                 lhs: &prev,
                 rhs: &rhs,
+                lhs_expr,
+                where_,
                 link,
                 span,
                 subs: &subs,

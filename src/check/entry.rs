@@ -24,6 +24,11 @@ pub struct Options {
     pub max_file_size: u64,
     /// The clock the time budget is measured on; `None`: no budget.
     pub clock: Option<crate::clock::Clock>,
+    /// For rigor's own tests of its guard only: every right side normalises to the left
+    /// side, as a broken engine might, so that only the guard stands between a false
+    /// step and "verified".
+    #[doc(hidden)]
+    pub corrupt_for_tests: bool,
 }
 
 impl Default for Options {
@@ -33,6 +38,7 @@ impl Default for Options {
             timeout: Duration::from_secs(10),
             max_file_size: 10_000_000,
             clock: crate::clock::system(),
+            corrupt_for_tests: false,
         }
     }
 }

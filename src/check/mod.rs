@@ -12,6 +12,7 @@
 //! | `step.rs` | deciding one link: identity, elimination with the facts, the verdict |
 //! | `conditions.rs` | side conditions of a link: assumed, settled, or failing it |
 //! | `explain.rs` | a link that fails: refutation (only where the facts allow), or why not |
+//! | `confirm.rs` | the guard: both sides as written, evaluated independently at points |
 //! | `relations.rs` | `!=`, `<`, `<=`, `>`, `>=` and `~=` links |
 //! | `signs.rs` | signs of differences and divisors, values against declared signs |
 //! | `solve.rs` | elimination of unknowns, contradictions, zero divisors |
@@ -19,6 +20,7 @@
 
 mod claims;
 mod conditions;
+mod confirm;
 mod entry;
 mod explain;
 mod imports;

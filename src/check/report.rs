@@ -118,6 +118,9 @@ pub struct FileReport {
     pub ast: Option<File>,
     /// Every claim, in order.
     pub claims: Vec<ClaimReport>,
+    /// Verified links whose two sides, as written, the guard evaluated independently and
+    /// found to agree at one point or more.
+    pub guarded: usize,
     /// Every diagnostic, in source order.
     pub diagnostics: Vec<Diagnostic>,
     /// Whether the input was bad (syntax, undeclared symbol, unreadable file…): exit status 2.

@@ -11,7 +11,7 @@ use crate::diag::Diagnostic;
 use crate::lower::{Condition, Need};
 use crate::normal::atom::AtomId;
 use crate::normal::Rat;
-use crate::syntax::ast::{By, Link, RelOp, Span};
+use crate::syntax::ast::{Assign, By, Expr, Link, RelOp, Span};
 use std::collections::HashSet;
 
 /// One link to decide, with what its claim gives it.
@@ -20,6 +20,10 @@ pub(super) struct LinkInput<'a> {
     pub lhs: &'a Rat,
     /// The right side, as lowered.
     pub rhs: &'a Rat,
+    /// The left side as written (the guard evaluates it independently).
+    pub lhs_expr: &'a Expr,
+    /// The claim's `where` as written.
+    pub where_: &'a [Assign],
     /// The link as written (relation, right side, `by`).
     pub link: &'a Link,
     /// Where to report.
@@ -140,10 +144,11 @@ impl Checker<'_, '_> {
         }
         if diff.is_zero() && input.divisors.is_empty() && input.link.op == RelOp::Eq {
             // An identity with nothing to assume: no facts needed.
-            return Ok(Status::Verified {
+            let status = Status::Verified {
                 how: Justification::Identity,
                 side_conditions: Vec::new(),
-            });
+            };
+            return Ok(self.confirm(input, None, status));
         }
         let Some(red) = self.reduce(input, a, b, diff)? else {
             return Ok(Status::Error);
@@ -159,14 +164,15 @@ impl Checker<'_, '_> {
             )
             .note("nothing can be verified from contradictory facts; check the givens"));
         }
-        match input.link.op {
+        let status = match input.link.op {
             RelOp::Eq => self.decide_eq(input, &red, conditions, all_divs),
             RelOp::Ne => self.decide_ne(&red, span, conditions),
             RelOp::Lt | RelOp::Le | RelOp::Gt | RelOp::Ge => {
                 self.decide_order(input.link.op, &red, span, conditions)
             }
             RelOp::Approx => self.decide_approx(input, &red, conditions),
-        }
+        }?;
+        Ok(self.confirm(input, Some(&red), status))
     }
 
     /// The facts the link may use, the elimination of unknowns, and what it used.

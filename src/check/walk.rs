@@ -47,6 +47,8 @@ pub struct Checker<'l, 'o> {
     /// The conditions the last verified link holds under (its own and those of the
     /// facts it used): a claim that becomes a fact carries them.
     pub(super) conditions: Vec<Condition>,
+    /// Definitions, bodies and time symbols as written, for the guard.
+    pub(super) guard_env: crate::guard::GuardEnv,
 }
 
 impl<'l, 'o> Checker<'l, 'o> {
@@ -65,6 +67,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             timed_out: false,
             line_starts: Vec::new(),
             conditions: Vec::new(),
+            guard_env: crate::guard::GuardEnv::default(),
         }
     }
 
@@ -242,6 +245,7 @@ impl<'l, 'o> Checker<'l, 'o> {
                 for n in names {
                     if self.declare(&n.name, n.span, Decl::Time) {
                         self.env.time.insert(n.name.clone());
+                        self.guard_env.time.insert(n.name.clone());
                     }
                 }
             }
@@ -276,6 +280,7 @@ impl<'l, 'o> Checker<'l, 'o> {
                 };
                 if self.declare(&name.name, name.span, Decl::Def) {
                     self.env.defs.insert(name.name.clone(), v);
+                    self.guard_env.defs.insert(name.name.clone(), value.clone());
                 }
             }
             StmtKind::Given { label, chain } | StmtKind::Constraint { label, chain } => {
@@ -330,6 +335,7 @@ impl<'l, 'o> Checker<'l, 'o> {
         match build_body(&name.name, def, &self.env) {
             Ok(b) => {
                 self.env.bodies.insert(name.name.clone(), b);
+                self.guard_env.bodies.insert(name.name.clone(), def.clone());
                 self.body_coords.insert(name.name.clone(), coords);
             }
             Err(e) => self.lower_error(e),

@@ -253,6 +253,7 @@ pub fn check(
         timeout,
         max_file_size,
         clock: rigor::clock::system(),
+        corrupt_for_tests: false,
     };
     let reports = rigor::files::check_paths(paths, &options);
     match format {

@@ -258,6 +258,7 @@ fn report_with(path: &str, src: &str, statuses: Vec<Status>) -> FileReport {
     }
     FileReport {
         path: path.into(),
+        guarded: 0,
         source: src.into(),
         ast: Some(ast),
         claims,

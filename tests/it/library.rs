@@ -56,7 +56,11 @@ fn a_missing_import_is_an_error_at_the_path() {
     assert!(r.input_error);
     let d = &r.diagnostics[0];
     assert_eq!(d.code, "E0206");
-    assert!(d.message.contains("cannot read \"lib/rod.deriv\""), "{}", d.message);
+    assert!(
+        d.message.contains("cannot read \"lib/rod.deriv\""),
+        "{}",
+        d.message
+    );
 }
 
 #[test]
@@ -64,11 +68,28 @@ fn imports_may_not_leave_the_root_or_go_round_in_a_cycle() {
     let mut files = MemoryResolver::new();
     files.insert("a.deriv", "use [x] from \"b.deriv\"\n");
     files.insert("b.deriv", "use [y] from \"a.deriv\"\n");
-    let r = check_source("a.deriv", "use [x] from \"b.deriv\"\n", &Options::default(), &files);
+    let r = check_source(
+        "a.deriv",
+        "use [x] from \"b.deriv\"\n",
+        &Options::default(),
+        &files,
+    );
     let msg = &r.diagnostics[0].message;
-    assert!(msg.contains("import cycle: a.deriv → b.deriv → a.deriv"), "{msg}");
-    let r = check_source("a.deriv", "use [x] from \"../c.deriv\"\n", &Options::default(), &files);
-    assert!(r.diagnostics[0].message.contains("outside the folder"), "{:?}", r.diagnostics);
+    assert!(
+        msg.contains("import cycle: a.deriv → b.deriv → a.deriv"),
+        "{msg}"
+    );
+    let r = check_source(
+        "a.deriv",
+        "use [x] from \"../c.deriv\"\n",
+        &Options::default(),
+        &files,
+    );
+    assert!(
+        r.diagnostics[0].message.contains("outside the folder"),
+        "{:?}",
+        r.diagnostics
+    );
 }
 
 #[test]

@@ -5,6 +5,7 @@ mod check;
 mod cli;
 mod equiv;
 mod fuzz;
+mod guard;
 mod hostile;
 mod library;
 mod normal;
