@@ -5,6 +5,7 @@
 //! disagrees", with both values; it can never make a link verified or failed.
 
 use super::report::Status;
+use super::solve::{Fact, Step};
 use super::step::{LinkInput, Reduced};
 use super::walk::{unknown_atom, Checker};
 use crate::decide::Evaluator;
@@ -67,7 +68,8 @@ impl Checker<'_, '_> {
             Rng(0x5EED ^ ((input.span.start as u64) << 20) ^ self.report.source.len() as u64);
         let mut agreed = false;
         for _ in 0..POINTS {
-            let Some(point) = self.point(input, red, &mut rng) else {
+            let Some(point) = self.point(input, &Situation::of(red), &HashMap::new(), &mut rng)
+            else {
                 continue;
             };
             let env = &self.guard_env;
@@ -87,53 +89,45 @@ impl Checker<'_, '_> {
         status
     }
 
-    /// A point for the guard: random values of the declared signs, `where` values, and
-    /// the unknowns' values from the elimination; `None` when it cannot be made to
-    /// satisfy the facts the link used.
+    /// A point for the guard: `fixed` values, random values of the declared signs for
+    /// the other symbols, `where` values, and the unknowns' values from the elimination;
+    /// `None` when it cannot be made to satisfy the facts.
     fn point(
         &self,
         input: &LinkInput<'_>,
-        red: Option<&Reduced>,
+        sit: &Situation<'_>,
+        fixed: &HashMap<String, Q>,
         rng: &mut Rng,
     ) -> Option<HashMap<String, f64>> {
-        let used = red.map_or(&[][..], |r| &r.used[..]);
-        let via = red.is_some_and(|r| !r.via.is_empty());
         let env = &self.guard_env;
         let mut names: Vec<String> = guard::free_symbols(input.lhs_expr, env)
             .into_iter()
             .chain(guard::free_symbols(&input.link.rhs, env))
             .collect();
+        for f in sit.facts {
+            let mut syms = Vec::new();
+            crate::decide::symbols_in(&f.value, &mut syms);
+            names.extend(syms.into_iter().filter_map(atom::sym_name));
+        }
         names.sort();
         names.dedup();
         let mut exact: HashMap<AtomId, Q> = HashMap::new();
         let mut point: HashMap<String, f64> = HashMap::new();
         for n in &names {
             let a = atom::sym(n);
-            let x = rng.value(self.env.signs.declared(a));
-            exact.insert(a, Q::from_f64(x)?);
-            point.insert(n.clone(), x);
-        }
-        // Parameters the facts mention get values too (the unknowns' values use them).
-        for f in used {
-            let mut syms = Vec::new();
-            crate::decide::symbols_in(&f.value, &mut syms);
-            for a in syms {
-                if let (Some(n), false) = (atom::sym_name(a), exact.contains_key(&a)) {
-                    let x = rng.value(self.env.signs.declared(a));
-                    exact.insert(a, Q::from_f64(x)?);
-                    point.insert(n, x);
-                }
-            }
+            let q = match fixed.get(n) {
+                Some(q) => q.clone(),
+                None => Q::from_f64(rng.value(self.env.signs.declared(a)))?,
+            };
+            point.insert(n.clone(), q.to_f64()?);
+            exact.insert(a, q);
         }
         for (a, e) in input.subs.iter().zip(input.where_) {
             let v = guard::eval(&e.value, env, &point).ok()?;
             point.insert(e.name.name.clone(), v.mid);
             exact.insert(a.0, Q::from_f64(v.mid)?);
         }
-        let steps = red
-            .and_then(|r| r.elim.as_ref())
-            .map_or(&[][..], |e| &e.steps[..]);
-        for s in steps.iter().rev() {
+        for s in sit.steps.iter().rev() {
             let mut ev = Evaluator::new(&exact);
             ev.prec = Prec::new(160);
             let v = ev.rat(&s.value)?.midpoint();
@@ -142,19 +136,78 @@ impl Checker<'_, '_> {
             }
             exact.insert(s.unknown, v);
         }
-        // Every fact the link used must hold there (else the point says nothing).
-        let holds = used.iter().all(|f| {
+        // The facts must hold there (else the point says nothing); with `strict`, a fact
+        // that cannot be evaluated there fails the point too.
+        let tiny = Q::new(1.into(), num_bigint::BigInt::from(10).pow(20));
+        let holds = sit.facts.iter().all(|f| {
             let mut ev = Evaluator::new(&exact);
             ev.prec = Prec::new(160);
-            ev.rat(&f.value).is_some_and(|v| {
-                let tiny = Q::new(1.into(), num_bigint::BigInt::from(10).pow(20));
-                v.lo() >= &-tiny.clone() && v.hi() <= &tiny
-            })
+            match ev.rat(&f.value) {
+                Some(v) => v.lo() >= &-tiny.clone() && v.hi() <= &tiny,
+                None => !sit.strict,
+            }
         });
-        let unknown_left = names
-            .iter()
-            .any(|n| unknown_atom(&self.scope, atom::sym(n)) && !exact.contains_key(&atom::sym(n)));
-        (holds && !(unknown_left && via)).then_some(point)
+        let unknown_left = names.iter().any(|n| {
+            let a = atom::sym(n);
+            unknown_atom(&self.scope, a) && !exact.contains_key(&a)
+        });
+        (holds && !(unknown_left && sit.via)).then_some(point)
+    }
+
+    /// Whether the guard lets a refutation stand: at the counterexample (and the
+    /// unknowns' values there), the sides as written must not come out equal.
+    pub(super) fn counterexample_stands(
+        &self,
+        input: &LinkInput<'_>,
+        sit: &Situation<'_>,
+        values: &[(String, Q)],
+    ) -> Result<(), Diagnostic> {
+        let fixed: HashMap<String, Q> = values.iter().cloned().collect();
+        let mut rng = Rng(0xC0FFEE);
+        let Some(point) = self.point(input, sit, &fixed, &mut rng) else {
+            return Ok(());
+        };
+        let env = &self.guard_env;
+        let (Ok(a), Ok(b)) = (
+            guard::eval(input.lhs_expr, env, &point),
+            guard::eval(&input.link.rhs, env, &point),
+        ) else {
+            return Ok(());
+        };
+        let scale = 1f64.max(a.mid.abs()).max(b.mid.abs());
+        let equal_there = (a.mid - b.mid).abs() <= 1e-9 * scale && a.rad + b.rad <= 1e-10 * scale;
+        if equal_there {
+            let mut d = disagreement(input, &point, a, b);
+            d.notes[1] = "rigor's exact argument says the sides differ here; please report this derivation as a bug in rigor".into();
+            return Err(d);
+        }
+        Ok(())
+    }
+}
+
+/// The facts and the elimination a point must agree with.
+pub(super) struct Situation<'r> {
+    /// Facts that must hold at the point.
+    pub facts: &'r [Fact],
+    /// The elimination's steps: the unknowns' values.
+    pub steps: &'r [Step],
+    /// Whether the link used facts (then every unknown needs a value from them).
+    pub via: bool,
+    /// Whether a fact that cannot be evaluated at the point rules the point out.
+    pub strict: bool,
+}
+
+impl<'r> Situation<'r> {
+    /// What a verified link used.
+    pub fn of(red: Option<&'r Reduced>) -> Situation<'r> {
+        Situation {
+            facts: red.map_or(&[][..], |r| &r.used[..]),
+            steps: red
+                .and_then(|r| r.elim.as_ref())
+                .map_or(&[][..], |e| &e.steps[..]),
+            via: red.is_some_and(|r| !r.via.is_empty()),
+            strict: true,
+        }
     }
 }
 

@@ -2,9 +2,14 @@
 //! situation the facts in scope allow, with a checked counterexample), the unknowns no
 //! fact determines, or why rigor can decide neither way.
 
+use super::confirm::Situation;
 use super::report::cite;
+use super::solve::Step;
 use super::solve::{apply_steps, unknown_name, Fact};
-use super::step::Reduced;
+use super::step::{LinkInput, Reduced};
+
+/// The two sides reduced by every fact in scope, and the steps that did it.
+pub(super) type Sides = (Rat, Rat, Vec<Step>);
 use super::walk::{unknown_atom, Checker};
 use crate::clock::Deadline;
 use crate::decide::Verdict;
@@ -27,7 +32,7 @@ impl Checker<'_, '_> {
         restricted: bool,
         span: Span,
         deadline: Option<Deadline>,
-    ) -> Result<Option<(Rat, Rat)>, Diagnostic> {
+    ) -> Result<Option<Sides>, Diagnostic> {
         let signs = &self.env.signs;
         let is_unknown = |x: AtomId| unknown_atom(&self.scope, x);
         let elim = |facts: &[Fact], params: bool| {
@@ -67,7 +72,7 @@ impl Checker<'_, '_> {
             if tied.is_empty() {
                 let reduce = |r: &Rat| apply_steps(r, &steps, signs);
                 return Ok(match (reduce(&red.a), reduce(&red.b)) {
-                    (Ok(x), Ok(y)) => Some((x, y)),
+                    (Ok(x), Ok(y)) => Some((x, y, steps)),
                     _ => None,
                 });
             }
@@ -96,12 +101,16 @@ impl Checker<'_, '_> {
     /// by every fact in scope, when a refutation may be tried on them.
     pub(super) fn not_equal(
         &self,
+        input: &LinkInput<'_>,
         red: &Reduced,
-        sides: Option<(Rat, Rat)>,
-        span: Span,
+        sides: Option<Sides>,
         defined: &[Condition],
     ) -> Diagnostic {
-        let (ra, rb) = sides.unwrap_or_else(|| (red.ra.clone(), red.rb.clone()));
+        let span = input.span;
+        let (ra, rb, steps) = sides.unwrap_or_else(|| {
+            let steps = red.elim.as_ref().map_or_else(Vec::new, |e| e.steps.clone());
+            (red.ra.clone(), red.rb.clone(), steps)
+        });
         let using = if red.via.is_empty() {
             String::new()
         } else {
@@ -144,6 +153,18 @@ impl Checker<'_, '_> {
                 counterexample,
                 ..
             } => {
+                // The guard re-evaluates the sides as written at the counterexample.
+                if let Some(c) = counterexample.as_ref().filter(|c| !c.values.is_empty()) {
+                    let sit = Situation {
+                        facts: &red.scope,
+                        steps: &steps,
+                        via: false,
+                        strict: false,
+                    };
+                    if let Err(d) = self.counterexample_stands(input, &sit, &c.values) {
+                        return with_notes(d, Vec::new());
+                    }
+                }
                 let label = diagnosis.unwrap_or_else(|| "the two sides differ".into());
                 let d = Diagnostic::error(
                     "E0301",

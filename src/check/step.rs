@@ -294,6 +294,6 @@ impl Checker<'_, '_> {
         } else {
             self.unrefuted(red, input.restricted(), input.span, input.deadline)?
         };
-        Err(self.not_equal(red, sides, input.span, &all_divs))
+        Err(self.not_equal(input, red, sides, &all_divs))
     }
 }

@@ -10,6 +10,7 @@ mod hostile;
 mod library;
 mod normal;
 mod props;
+mod soundness;
 mod workloads;
 
 /// The number of proptest cases: `default`, or `PROPTEST_CASES` when it is set, so a
