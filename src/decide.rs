@@ -313,6 +313,16 @@ pub fn find_counterexample_where(
         let mut point: HashMap<AtomId, Q> = HashMap::new();
         for (i, sym) in syms.iter().enumerate() {
             let (n, d) = CANDIDATES[(i * 5 + k * 7 + k / 3) % CANDIDATES.len()];
+            let t = Q::new(BigInt::from((i * 3 + k * 5) % 9 + 1), BigInt::from(10));
+            match crate::normal::ranges::sample(s, *sym, &t) {
+                crate::normal::ranges::Sample::At(q) => {
+                    point.insert(*sym, q);
+                    continue;
+                }
+                // A value outside an interval nobody can bound is no counterexample.
+                crate::normal::ranges::Sample::Unusable => return None,
+                crate::normal::ranges::Sample::Free => {}
+            }
             let mut q = Q::new(BigInt::from(n), BigInt::from(d));
             let sign = s.declared(*sym);
             if matches!(sign, Sign::Unknown | Sign::NonZero) && (i + k) % 3 == 1 {

@@ -116,6 +116,9 @@ pub struct Lowerer<'a> {
     pub divisors: Vec<Divisor>,
 }
 
+/// A bound variable and the declared sign and interval of its name, to restore.
+type Bound = (AtomId, Sign, Option<crate::normal::Range>);
+
 /// What happens to the conditions recorded inside a bound variable's scope.
 enum Scope<'v> {
     /// `subs(f, x, v)`: each condition at `x = v`.
@@ -186,18 +189,28 @@ impl<'a> Lowerer<'a> {
         let outer = std::mem::take(&mut self.divisors);
         let mut saved = Vec::with_capacity(vars.len());
         for (name, sign) in vars {
-            let x = atom::sym(name);
-            saved.push((x, self.signs.declared(x)));
-            self.signs.set(x, *sign);
+            saved.push(self.bind(atom::sym(name), *sign));
             self.bound.push(name.clone());
         }
         let r = self.lower(e);
-        for (x, sign) in saved.into_iter().rev() {
-            self.signs.set(x, sign);
+        for s in saved.into_iter().rev() {
+            self.unbind(s);
             self.bound.pop();
         }
         let inner = std::mem::replace(&mut self.divisors, outer);
         Ok((r?, inner))
+    }
+
+    /// Makes `x` a fresh variable of sign `sign` (no declared interval); what to restore.
+    fn bind(&mut self, x: AtomId, sign: Sign) -> Bound {
+        let old = (x, self.signs.declared(x), self.signs.set_range(x, None));
+        self.signs.set(x, sign);
+        old
+    }
+
+    fn unbind(&mut self, (x, sign, range): Bound) {
+        self.signs.set(x, sign);
+        self.signs.set_range(x, range);
     }
 
     /// Carries conditions recorded in the scope of `var` out of it.
@@ -447,6 +460,7 @@ impl<'a> Lowerer<'a> {
     fn signs_without(&self, x: AtomId) -> Assumptions {
         let mut s = self.signs.clone();
         s.set(x, Sign::Unknown);
+        s.set_range(x, None);
         s
     }
 
@@ -508,6 +522,7 @@ impl<'a> Lowerer<'a> {
         self.carry(inner, &var, Scope::Region, sp)?;
         let mut s = self.signs.clone();
         s.set(x, sign);
+        s.set_range(x, None);
         if self.is_time_var(&var) {
             let time = &self.env.time;
             let is_time = |b: &str| time.contains(b);
@@ -542,6 +557,7 @@ impl<'a> Lowerer<'a> {
         let mut s = self.signs.clone();
         for (name, sign) in &vars {
             s.set(atom::sym(name), *sign);
+            s.set_range(atom::sym(name), None);
         }
         b.integrate(&fv, &s).map_err(|e| int_err(body.span, e))
     }
@@ -554,14 +570,13 @@ impl<'a> Lowerer<'a> {
                 let mut saved = Vec::new();
                 for (v, lo, hi) in ranges {
                     let sign = self.range_sign(lo, hi);
-                    saved.push((*v, self.signs.declared(*v)));
-                    self.signs.set(*v, sign);
+                    saved.push(self.bind(*v, sign));
                     if let Some(n) = atom::sym_name(*v) {
                         out.push((n, sign));
                     }
                 }
-                for (v, s) in saved.into_iter().rev() {
-                    self.signs.set(v, s);
+                for s in saved.into_iter().rev() {
+                    self.unbind(s);
                 }
             }
             Body::Abstract { coords, .. } => {
@@ -607,6 +622,7 @@ pub fn build_body(
                 lw.bound.push(r.var.name.clone());
                 let v = atom::sym(&r.var.name);
                 lw.signs.set(v, Sign::Unknown);
+                lw.signs.set_range(v, None);
                 let from = lw.lower(&r.from)?;
                 let to = lw.lower(&r.to)?;
                 let sign = lw.range_sign(&from, &to);

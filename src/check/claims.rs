@@ -207,9 +207,45 @@ impl Checker<'_, '_> {
                 );
                 return None;
             }
+            if let Some(why) = self.outside_range(x, &v) {
+                self.error(
+                    "E0207",
+                    why,
+                    a.value.span,
+                    "this value is outside the declared interval",
+                );
+                return None;
+            }
             subs.push((x, v));
         }
         Some(subs)
+    }
+
+    /// Why `v` is not shown to lie in the interval declared for `x`, if it is not.
+    fn outside_range(&self, x: AtomId, v: &Rat) -> Option<String> {
+        let r = self.env.signs.range(x)?;
+        let signs = &self.env.signs;
+        let inside = |d: Result<Rat, crate::normal::NormError>, strict: bool| {
+            d.is_ok_and(|d| {
+                let s = super::signs::sign_of(&d, signs);
+                s == crate::normal::Sign::Pos || (!strict && s.is_nonneg())
+            })
+        };
+        if inside(v.sub(&r.lo), r.lo_strict) && inside(r.hi.sub(v), r.hi_strict) {
+            return None;
+        }
+        let (lo, hi) = (
+            if r.lo_strict { "<" } else { "<=" },
+            if r.hi_strict { "<" } else { "<=" },
+        );
+        Some(format!(
+            "`{}` is declared in {} {lo} {} {hi} {}, but {} is not shown to lie there",
+            atom::sym_name(x).unwrap_or_default(),
+            plain(&r.lo),
+            atom::sym_name(x).unwrap_or_default(),
+            plain(&r.hi),
+            plain(v)
+        ))
     }
 
     fn push_error_claim(&mut self, mut claim: ClaimReport, chain: &Chain) {

@@ -13,6 +13,7 @@ use crate::diag::Diagnostic;
 use crate::guard::{self, Ball};
 use crate::interval::Prec;
 use crate::normal::atom::{self, AtomId};
+use crate::normal::ranges::Sample;
 use crate::normal::{Sign, Q};
 use crate::syntax::ast::RelOp;
 use num_traits::{FromPrimitive, ToPrimitive};
@@ -117,7 +118,14 @@ impl Checker<'_, '_> {
             let a = atom::sym(n);
             let q = match fixed.get(n) {
                 Some(q) => q.clone(),
-                None => Q::from_f64(rng.value(self.env.signs.declared(a)))?,
+                None => {
+                    let t = Q::new(((rng.next() % 15) + 1).into(), 16.into());
+                    match crate::normal::ranges::sample(&self.env.signs, a, &t) {
+                        Sample::At(q) => q,
+                        Sample::Unusable => return None,
+                        Sample::Free => Q::from_f64(rng.value(self.env.signs.declared(a)))?,
+                    }
+                }
             };
             point.insert(n.clone(), q.to_f64()?);
             exact.insert(a, q);

@@ -152,6 +152,9 @@ impl Checker<'_, '_> {
         red: &Reduced,
         conditions: Vec<String>,
     ) -> Result<Status, Diagnostic> {
+        if let Some(order) = self.small_order(red) {
+            return self.decide_small(input, red, order, conditions);
+        }
         let signs = &self.env.signs;
         let is_unknown = |x: AtomId| unknown_atom(&self.scope, x);
         let value = |r: &Rat| {
@@ -160,6 +163,106 @@ impl Checker<'_, '_> {
         };
         let (va, vb) = (value(&red.a), value(&red.b));
         self.approx(&va, &vb, &input.link.rhs, input.span, conditions)
+    }
+
+    /// The order to keep when a side mentions a small quantity (the highest declared
+    /// among those mentioned), else `None`.
+    fn small_order(&self, red: &Reduced) -> Option<u32> {
+        let mut syms = Vec::new();
+        crate::decide::symbols_in(&red.a, &mut syms);
+        crate::decide::symbols_in(&red.b, &mut syms);
+        syms.iter()
+            .filter_map(|a| self.small_of(*a))
+            .map(|(_, o)| o)
+            .max()
+    }
+
+    /// The small quantity (and order) atom `a` is, or is a time derivative of.
+    fn small_of(&self, a: AtomId) -> Option<(String, u32)> {
+        let n = atom::sym_name(a)?;
+        let base = n.trim_end_matches('\'');
+        self.small
+            .iter()
+            .find(|(s, _)| s.trim_end_matches('\'') == base)
+            .map(|(s, o)| (s.clone(), *o))
+    }
+
+    /// `~=` with small quantities: after the facts (as for `=`), the difference has no
+    /// term of order up to `order` in the small quantities and their derivatives.
+    fn decide_small(
+        &self,
+        input: &LinkInput<'_>,
+        red: &Reduced,
+        order: u32,
+        conditions: Vec<String>,
+    ) -> Result<Status, Diagnostic> {
+        let span = input.span;
+        let target = red.target();
+        let mut of: Vec<String> = Vec::new();
+        let mut syms = Vec::new();
+        crate::decide::symbols_in(&red.a, &mut syms);
+        crate::decide::symbols_in(&red.b, &mut syms);
+        for a in syms {
+            if let Some((s, _)) = self.small_of(a) {
+                if !of.contains(&s) {
+                    of.push(s);
+                }
+            }
+        }
+        let verified = Status::Verified {
+            how: Justification::Small {
+                order,
+                of: of.clone(),
+            },
+            side_conditions: conditions,
+        };
+        if target.is_zero() {
+            return Ok(verified);
+        }
+        let eps = atom::sym("\u{1}eps");
+        let scaled = |a: AtomId| {
+            self.small_of(a).map(|_| {
+                Rat::atom(a)
+                    .mul(&Rat::atom(eps))
+                    .unwrap_or_else(|_| Rat::atom(a))
+            })
+        };
+        let d = crate::normal::subst::Subst::new(&scaled, &self.env.signs)
+            .rat(&target)
+            .map_err(|e| Diagnostic::error("E0101", e.to_string(), span, ""))?;
+        let coeffs = crate::normal::series::series(&d, eps, order as usize, &self.env.signs)
+            .map_err(|e| {
+                let why = match e {
+                    crate::normal::series::SeriesError::NotAnalytic(w) => w,
+                    crate::normal::series::SeriesError::Norm(n) => n.to_string(),
+                };
+                Diagnostic::error(
+                    "E0302",
+                    format!("`~=` is not verified: rigor cannot expand {why} in powers of the small quantities"),
+                    span,
+                    "undecided",
+                )
+            })?;
+        let Some((k, c)) = coeffs.iter().enumerate().find(|(_, c)| !c.is_zero()) else {
+            return Ok(verified);
+        };
+        let what = if k == 0 {
+            "even with the small quantities set to zero".to_string()
+        } else {
+            format!("at order {k} in {}", of.join(", "))
+        };
+        Err(Diagnostic::error(
+            "E0304",
+            format!("`~=` does not hold to the order kept: the sides differ {what}"),
+            span,
+            "not equal to this order",
+        )
+        .note(format!(
+            "left − right = {} + …, which should have no term of order up to {order}",
+            plain(c)
+        ))
+        .note(format!("left side:  {}", plain(&red.a)))
+        .note(format!("right side: {}", plain(&red.b))))
     }
 
     fn approx(

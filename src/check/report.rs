@@ -15,6 +15,13 @@ pub enum Justification {
     Signs(Vec<String>),
     /// `~=`: the ratio rounds to 1 at the precision written.
     Approx,
+    /// `~=` with small quantities: the sides agree up to this order in them.
+    Small {
+        /// The order kept.
+        order: u32,
+        /// The small quantities, by name.
+        of: Vec<String>,
+    },
 }
 
 /// Facts as cited in messages: `[Fx], [MG], line 12` (labels in brackets, unlabelled
@@ -43,6 +50,11 @@ impl std::fmt::Display for Justification {
             Justification::Signs(fs) if fs.is_empty() => f.write_str("signs"),
             Justification::Signs(fs) => write!(f, "signs, from {}", cite(fs)),
             Justification::Approx => f.write_str("approx"),
+            Justification::Small { order, of } => {
+                let nth = if *order == 1 { "first" } else { "second" };
+                let nth = if *order > 2 { "higher" } else { nth };
+                write!(f, "to {nth} order in {}", of.join(", "))
+            }
         }
     }
 }

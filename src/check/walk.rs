@@ -12,7 +12,7 @@ use crate::diag::{Diagnostic, Severity};
 use crate::lower::{build_body, sign_of_decl, Condition, Env, LowerError, Lowerer};
 use crate::normal::atom::{self, AtomId};
 use crate::normal::print::plain;
-use crate::normal::Rat;
+use crate::normal::{Rat, Sign};
 use crate::syntax::ast::{BodyDef, Chain, Expr, File, Item, Label, RelOp, Span, StmtKind};
 use std::collections::HashMap;
 
@@ -49,6 +49,10 @@ pub struct Checker<'l, 'o> {
     pub(super) conditions: Vec<Condition>,
     /// Definitions, bodies and time symbols as written, for the guard.
     pub(super) guard_env: crate::guard::GuardEnv,
+    /// Quantities declared `small`, with the order kept.
+    pub(super) small: Vec<(String, u32)>,
+    /// The labels `result` names (checked at the end of the file).
+    results: Vec<Label>,
 }
 
 impl<'l, 'o> Checker<'l, 'o> {
@@ -68,6 +72,8 @@ impl<'l, 'o> Checker<'l, 'o> {
             line_starts: Vec::new(),
             conditions: Vec::new(),
             guard_env: crate::guard::GuardEnv::default(),
+            small: Vec::new(),
+            results: Vec::new(),
         }
     }
 
@@ -93,6 +99,17 @@ impl<'l, 'o> Checker<'l, 'o> {
         for item in &file.items {
             if let Item::Stmt(st) = item {
                 self.statement(&st.kind, st.span);
+            }
+        }
+        for l in std::mem::take(&mut self.results) {
+            if !self.labels.contains_key(&l.name) {
+                let hint = self.label_hint(&l.name);
+                self.error(
+                    "E0205",
+                    format!("`result` names [{}], which no statement has", l.name),
+                    l.span,
+                    &hint,
+                );
             }
         }
         self.report.ast = Some(file);
@@ -237,6 +254,30 @@ impl<'l, 'o> Checker<'l, 'o> {
                         self.env.signs.set(atom::sym(&n.name), sign_of_decl(*sign));
                     }
                 }
+            }
+            StmtKind::Range {
+                names,
+                lo,
+                lo_strict,
+                hi,
+                hi_strict,
+            } => self.range(names, (lo, *lo_strict), (hi, *hi_strict)),
+            StmtKind::Small { names, order } => {
+                for n in names {
+                    let base = n.name.trim_end_matches('\'');
+                    if !self.scope.is_declared(base) {
+                        self.declared(&Expr::new(
+                            crate::syntax::ast::ExprKind::Sym(n.name.clone()),
+                            n.span,
+                        ));
+                        continue;
+                    }
+                    self.small.retain(|(s, _)| *s != n.name);
+                    self.small.push((n.name.clone(), *order));
+                }
+            }
+            StmtKind::Result { labels } => {
+                self.results.extend(labels.iter().cloned());
             }
             StmtKind::Time { names } => {
                 if !self.scope.names.contains_key("t") {
@@ -412,6 +453,67 @@ impl<'l, 'o> Checker<'l, 'o> {
             }
             prev = rhs;
         }
+    }
+
+    /// `symbols lo < x < hi`: symbols with the sign and the interval the bounds give.
+    fn range(&mut self, names: &[crate::syntax::ast::Name], lo: (&Expr, bool), hi: (&Expr, bool)) {
+        let mut divs = Vec::new();
+        let (Some(l), Some(h)) = (self.lower(lo.0, &mut divs), self.lower(hi.0, &mut divs)) else {
+            return;
+        };
+        let signs = &self.env.signs;
+        let (sl, sh) = (sign_of(&l, signs), sign_of(&h, signs));
+        let empty = l.sub(&h).is_ok_and(|d| {
+            let s = sign_of(&d, signs);
+            s == Sign::Pos || (s.is_nonneg() && (lo.1 || hi.1))
+        });
+        if empty {
+            self.error(
+                "E0203",
+                format!("the interval from {} to {} is empty", plain(&l), plain(&h)),
+                lo.0.span.to(hi.0.span),
+                "the lower bound must be below the upper bound",
+            );
+            return;
+        }
+        let above = match sl {
+            Sign::Pos => Sign::Pos,
+            Sign::NonNeg | Sign::Zero if lo.1 => Sign::Pos,
+            Sign::NonNeg | Sign::Zero => Sign::NonNeg,
+            _ => Sign::Unknown,
+        };
+        let below = match sh {
+            Sign::Neg => Sign::Neg,
+            Sign::NonPos | Sign::Zero if hi.1 => Sign::Neg,
+            Sign::NonPos | Sign::Zero => Sign::NonPos,
+            _ => Sign::Unknown,
+        };
+        let sign = if above != Sign::Unknown { above } else { below };
+        let range = crate::normal::Range {
+            lo: l,
+            lo_strict: lo.1,
+            hi: h,
+            hi_strict: hi.1,
+        };
+        for n in names {
+            if self.declare(&n.name, n.span, Decl::Symbol) {
+                let x = atom::sym(&n.name);
+                self.env.signs.set(x, sign);
+                self.env.signs.set_range(x, Some(range.clone()));
+            }
+        }
+    }
+
+    /// "did you mean [..]?" for a label that names nothing.
+    pub(super) fn label_hint(&self, name: &str) -> String {
+        let mut sc = Scope::default();
+        for k in self.labels.keys() {
+            sc.names.insert(k.clone(), Decl::Symbol);
+        }
+        sc.suggest(name)
+            .map_or("no statement has that label".into(), |s| {
+                format!("did you mean [{s}]?")
+            })
     }
 
     pub(super) fn is_unknown(&self, a: AtomId) -> bool {

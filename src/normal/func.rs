@@ -187,8 +187,28 @@ fn root_poly(p: &Poly, n: u32, s: &Assumptions) -> Result<Rat, NormError> {
         if let Some(r) = poly_sqrt(&radicand)? {
             return out.mul(&abs(&Rat::poly(r)?, s)?);
         }
+        // 1 − sin(u)² is cos(u)², which the rules keep as 1 − sin(u)².
+        if let Some(u) = one_minus_sin_squared(&radicand) {
+            return out.mul(&abs(&super::trig::cos(&u)?, s)?);
+        }
     }
     out.mul(&Rat::atom(root_atom(radicand, n)))
+}
+
+/// `u` when `p` is `1 − sin(u)²`.
+fn one_minus_sin_squared(p: &Poly) -> Option<Rat> {
+    let [(m1, c1), (m2, c2)] = p.terms() else {
+        return None;
+    };
+    let sq = match (m1.pairs(), m2.pairs()) {
+        ([(a, 2)], []) if c1 == &-Q::one() && c2.is_one() => *a,
+        ([], [(a, 2)]) if c2 == &-Q::one() && c1.is_one() => *a,
+        _ => return None,
+    };
+    match &*atom::get(sq) {
+        Atom::Sin(u) => Some(u.clone()),
+        _ => None,
+    }
 }
 
 fn root_atom(p: Poly, n: u32) -> atom::AtomId {

@@ -11,8 +11,10 @@ pub mod pack;
 pub mod poly;
 pub mod print;
 pub mod qops;
+pub mod ranges;
 pub mod rat;
 pub mod reduce;
+pub mod series;
 pub mod sign;
 pub mod subst;
 pub mod trig;
@@ -20,7 +22,7 @@ pub mod trig;
 pub use atom::{Atom, AtomId};
 pub use poly::{Poly, Q};
 pub use rat::Rat;
-pub use sign::{Assumptions, Sign};
+pub use sign::{Assumptions, Range, Sign};
 
 use std::fmt;
 

@@ -95,10 +95,24 @@ impl Sign {
     }
 }
 
-/// The declared signs of symbols.
+/// An interval a symbol is declared in (`symbols 0 < beta < pi/2`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Range {
+    /// The lower bound.
+    pub lo: Rat,
+    /// Whether the lower bound is excluded.
+    pub lo_strict: bool,
+    /// The upper bound.
+    pub hi: Rat,
+    /// Whether the upper bound is excluded.
+    pub hi_strict: bool,
+}
+
+/// The declared signs of symbols, and the intervals of those declared in one.
 #[derive(Clone, Debug, Default)]
 pub struct Assumptions {
     signs: HashMap<AtomId, Sign>,
+    ranges: HashMap<AtomId, Range>,
 }
 
 impl Assumptions {
@@ -110,6 +124,19 @@ impl Assumptions {
     /// Declares the sign of a symbol (the later declaration wins).
     pub fn set(&mut self, a: AtomId, s: Sign) {
         self.signs.insert(a, s);
+    }
+
+    /// Declares (or, with `None`, forgets) the interval of a symbol; returns the old one.
+    pub fn set_range(&mut self, a: AtomId, r: Option<Range>) -> Option<Range> {
+        match r {
+            Some(r) => self.ranges.insert(a, r),
+            None => self.ranges.remove(&a),
+        }
+    }
+
+    /// The interval declared for a symbol, if any.
+    pub fn range(&self, a: AtomId) -> Option<&Range> {
+        self.ranges.get(&a)
     }
 
     /// The declared sign of an atom that is a symbol.
@@ -170,7 +197,9 @@ impl Assumptions {
                 Some(q) if q.is_positive() && q < num_traits::One::one() => Sign::Neg,
                 _ => Sign::Unknown,
             },
-            Atom::Sin(_) | Atom::Cos(_) | Atom::At(..) => Sign::Unknown,
+            Atom::Sin(u) => super::ranges::trig_sign(self, u, false),
+            Atom::Cos(u) => super::ranges::trig_sign(self, u, true),
+            Atom::At(..) => Sign::Unknown,
         }
     }
 

@@ -82,6 +82,9 @@ fn justification(how: &Justification) -> Value {
         Justification::Facts(fs) => json!({ "kind": "facts", "facts": fs }),
         Justification::Signs(fs) => json!({ "kind": "signs", "facts": fs }),
         Justification::Approx => json!({ "kind": "approx" }),
+        Justification::Small { order, of } => {
+            json!({ "kind": "small", "order": order, "small": of })
+        }
     }
 }
 

@@ -256,6 +256,30 @@ impl<'a> Builder<'a> {
                 };
                 out.push(Inline::Math(format!("{}{sign}", names(ns))));
             }
+            StmtKind::Range {
+                names: ns,
+                lo,
+                lo_strict,
+                hi,
+                hi_strict,
+            } => {
+                let op = |strict: &bool| if *strict { " < " } else { " \\leq " };
+                out.push(Inline::Math(format!(
+                    "{}{}{}{}{}",
+                    expr_latex_in(lo, &self.ctx),
+                    op(lo_strict),
+                    names(ns),
+                    op(hi_strict),
+                    expr_latex_in(hi, &self.ctx)
+                )));
+            }
+            StmtKind::Small { names: ns, order } => {
+                out.push(Inline::Text("small: ".into()));
+                out.push(Inline::Math(names(ns)));
+                if *order > 1 {
+                    out.push(Inline::Text(format!(" (to order {order})")));
+                }
+            }
             StmtKind::Time { names: ns } => {
                 out.push(Inline::Text("functions of time ".into()));
                 out.push(Inline::Math("t".into()));
@@ -460,6 +484,8 @@ fn is_declaration(kind: &StmtKind) -> bool {
     matches!(
         kind,
         StmtKind::Symbols { .. }
+            | StmtKind::Range { .. }
+            | StmtKind::Small { .. }
             | StmtKind::Time { .. }
             | StmtKind::Unknowns { .. }
             | StmtKind::Units { .. }

@@ -312,6 +312,31 @@ pub enum StmtKind {
         /// The unknowns.
         names: Vec<Name>,
     },
+    /// `symbols 0 < beta < pi/2`: symbols in an interval.
+    Range {
+        /// The symbols declared.
+        names: Vec<Name>,
+        /// The lower bound.
+        lo: Expr,
+        /// Whether the lower bound is excluded (`<`) rather than included (`<=`).
+        lo_strict: bool,
+        /// The upper bound.
+        hi: Expr,
+        /// Whether the upper bound is excluded.
+        hi_strict: bool,
+    },
+    /// `small theta` or `small theta to order 2`.
+    Small {
+        /// The small quantities.
+        names: Vec<Name>,
+        /// The order kept (1 unless `to order n`).
+        order: u32,
+    },
+    /// `result [xdd], [N]`: the derivation's results.
+    Result {
+        /// The labels named.
+        labels: Vec<Label>,
+    },
     /// `units m: kg, L: m`
     Units {
         /// The declarations.

@@ -9,8 +9,10 @@ use super::lex::{end, expected, hspace, ident, keyword, number, punct, token_len
 use num_traits::Zero;
 
 /// The words that start a statement.
-pub(crate) const KEYWORDS: [&str; 10] = [
+pub(crate) const KEYWORDS: [&str; 12] = [
     "symbols",
+    "small",
+    "result",
     "time",
     "unknowns",
     "units",
@@ -40,6 +42,12 @@ fn stmt<'a>(cx: &Cx<'a>, region: &'a str) -> PResult<'a, Stmt> {
             names(cx, i, "unknowns", true).map(|(r, names)| (r, StmtKind::Unknowns { names }))?
         }
         "units" => units(cx, i)?,
+        "small" => small(cx, i)?,
+        "result" => {
+            let (r, labels) = label_list(cx, i)?;
+            end(cx, r, "`,` and the next label, or the end of the statement")?;
+            (r, StmtKind::Result { labels })
+        }
         "body" => body(cx, i)?,
         "let" => let_(cx, i)?,
         "use" => use_(cx, i)?,
@@ -54,13 +62,15 @@ fn stmt<'a>(cx: &Cx<'a>, region: &'a str) -> PResult<'a, Stmt> {
     ))
 }
 
-/// `names = name ([","] name)*` after `symbols`, `time` or `unknowns` (the `kw`).
+/// `names = name ([","] name)*` after `symbols`, `time` or `unknowns` (the `kw`); in
+/// `small`, the word `to` ends the list.
 fn names<'a>(cx: &Cx<'a>, i: &'a str, kw: &str, primes: bool) -> PResult<'a, Vec<Name>> {
     let (mut i, first) = name(cx, i, &format!("a symbol name after `{kw}`"), primes)?;
     let mut names = vec![first];
     loop {
         let next = punct(cx, i, ",").map_or(i, |(_, rest)| rest);
-        if ident(ws(cx, next)).is_err() {
+        let stop = kw == "small" && keyword(cx, next, "to").is_some();
+        if ident(ws(cx, next)).is_err() || stop {
             return Ok((i, names));
         }
         let (rest, n) = name(cx, next, "a symbol name", primes)?;
@@ -69,8 +79,11 @@ fn names<'a>(cx: &Cx<'a>, i: &'a str, kw: &str, primes: bool) -> PResult<'a, Vec
     }
 }
 
-/// `symbols = "symbols" names [sign]`.
+/// `symbols = "symbols" names [sign] | "symbols" expr less names less expr`.
 fn symbols<'a>(cx: &Cx<'a>, i: &'a str) -> PResult<'a, StmtKind> {
+    if let Some(r) = range(cx, i) {
+        return r;
+    }
     let (i, names) = names(cx, i, "symbols", false)?;
     let (i, sign) = sign(cx, i)?;
     end(
@@ -79,6 +92,77 @@ fn symbols<'a>(cx: &Cx<'a>, i: &'a str) -> PResult<'a, StmtKind> {
         "a symbol name, a sign (`> 0`, `>= 0`, `!= 0`) or the end of the statement",
     )?;
     Ok((i, StmtKind::Symbols { names, sign }))
+}
+
+/// `<` (strict) or `<=`, `≤`.
+fn less<'a>(cx: &Cx<'a>, i: &'a str) -> Option<(bool, &'a str)> {
+    for (op, strict) in [("<=", false), ("≤", false), ("<", true)] {
+        if let Some((_, rest)) = punct(cx, i, op) {
+            return Some((strict, rest));
+        }
+    }
+    None
+}
+
+/// `range = expr less names less expr` after `symbols`; `None` when the statement does
+/// not start like one (then it is a list of names).
+fn range<'a>(cx: &Cx<'a>, i: &'a str) -> Option<PResult<'a, StmtKind>> {
+    let (r, lo) = expr(cx, i, "symbols").ok()?;
+    let (lo_strict, r) = less(cx, r)?;
+    // `symbols m < 0` is not a range (and negative signs are not declared this way).
+    ident(ws(cx, r)).ok()?;
+    Some((|| {
+        let (r, names) = names(cx, r, "a bound and `<`", false)?;
+        let Some((hi_strict, r)) = less(cx, r) else {
+            return expected(
+                cx,
+                r,
+                "`<` or `<=` and the upper bound, as in `0 < beta < pi/2`",
+            );
+        };
+        let (r, hi) = expr(cx, r, "<")?;
+        end(cx, r, "the end of the statement after the upper bound")?;
+        Ok((
+            r,
+            StmtKind::Range {
+                names,
+                lo,
+                lo_strict,
+                hi,
+                hi_strict,
+            },
+        ))
+    })())
+}
+
+/// `small = "small" names ["to" "order" n]`.
+fn small<'a>(cx: &Cx<'a>, i: &'a str) -> PResult<'a, StmtKind> {
+    let (i, names) = names(cx, i, "small", false)?;
+    let Some((_, r)) = keyword(cx, i, "to") else {
+        end(cx, i, "a name, `to order n` or the end of the statement")?;
+        return Ok((i, StmtKind::Small { names, order: 1 }));
+    };
+    let Some((_, r)) = keyword(cx, r, "order") else {
+        return expected(cx, r, "`order` after `to`, as in `small theta to order 2`");
+    };
+    let at = ws(cx, r);
+    let order = match number(at) {
+        Ok((rest, n)) if n.is_integer() => {
+            match num_traits::ToPrimitive::to_u32(&n.to_integer()).filter(|k| (1..=4).contains(k)) {
+                Some(k) => (rest, k),
+                None => return expected(cx, at, "an order from 1 to 4 after `to order`"),
+            }
+        }
+        _ => return expected(cx, at, "an order from 1 to 4 after `to order`"),
+    };
+    end(cx, order.0, "the end of the statement after the order")?;
+    Ok((
+        order.0,
+        StmtKind::Small {
+            names,
+            order: order.1,
+        },
+    ))
 }
 
 /// `sign = (">" | ">=" | "≥" | "!=" | "≠") "0"`, or nothing.

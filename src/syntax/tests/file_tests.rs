@@ -70,6 +70,25 @@ fn item(i: &Item) -> String {
                 };
                 format!("(symbols {}{sign})", names(ns))
             }
+            StmtKind::Range {
+                names: ns,
+                lo,
+                lo_strict,
+                hi,
+                hi_strict,
+            } => {
+                let op = |s: &bool| if *s { "<" } else { "<=" };
+                format!(
+                    "(range {} {} {} {} {})",
+                    sexpr(lo),
+                    op(lo_strict),
+                    names(ns),
+                    op(hi_strict),
+                    sexpr(hi)
+                )
+            }
+            StmtKind::Small { names: ns, order } => format!("(small {} {order})", names(ns)),
+            StmtKind::Result { labels: ls } => format!("(result {})", labels(ls)),
             StmtKind::Time { names: ns } => format!("(time {})", names(ns)),
             StmtKind::Unknowns { names: ns } => format!("(unknowns {})", names(ns)),
             StmtKind::Units { decls } => {
@@ -176,6 +195,24 @@ fn declarations() {
         "let I_G = int(y^2, rod)",
         "(let I_G (call int (^ y 2) rod))",
     );
+}
+
+#[test]
+fn ranges_small_quantities_and_results() {
+    check_file("symbols 0 < beta < pi/2", "(range 0 < beta < (/ pi 2))");
+    check_file("symbols -1 <= x, y < a", "(range (- 1) <= x y < a)");
+    check_file("symbols m g > 0", "(symbols m g >0)");
+    check_file("small theta", "(small theta 1)");
+    check_file("small theta, phi to order 2", "(small theta phi 2)");
+    check_file("result [xdd], [N]", "(result [xdd],[N])");
+    for bad in [
+        "symbols 0 < beta",
+        "small theta to order 9",
+        "small theta to",
+        "result",
+    ] {
+        assert!(parse_file(bad, &ParseOptions::default()).is_err(), "{bad}");
+    }
 }
 
 #[test]
