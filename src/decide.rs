@@ -394,6 +394,28 @@ impl<'a> Evaluator<'a> {
         }
     }
 
+    /// An evaluator at `point` that starts from the values `memo` holds for atoms (as
+    /// [`Evaluator::values`] returned them at the same point or a point extending it).
+    pub fn with_values(
+        point: &'a HashMap<AtomId, Q>,
+        prec: Prec,
+        memo: HashMap<AtomId, Interval>,
+    ) -> Evaluator<'a> {
+        Evaluator {
+            point,
+            prec,
+            memo: memo.into_iter().map(|(a, v)| (a, Some(v))).collect(),
+        }
+    }
+
+    /// The atoms' values computed so far (those that could be evaluated).
+    pub fn values(self) -> HashMap<AtomId, Interval> {
+        self.memo
+            .into_iter()
+            .filter_map(|(a, v)| v.map(|v| (a, v)))
+            .collect()
+    }
+
     /// An enclosure of `r` at the point, `None` where undefined or not evaluable.
     pub fn rat(&mut self, r: &Rat) -> Option<Interval> {
         if let Some(q) = self.exact(r) {

@@ -452,6 +452,28 @@ impl Interval {
 
     /// Enclosure of `pi` (Machin's formula with alternating-series remainders).
     pub fn pi(p: Prec) -> Option<Interval> {
+        thread_local! {
+            static PI: std::cell::RefCell<Vec<(u32, Interval)>> = const { std::cell::RefCell::new(Vec::new()) };
+        }
+        if let Some(v) = PI.with(|c| {
+            c.borrow()
+                .iter()
+                .find(|e| e.0 == p.bits)
+                .map(|e| e.1.clone())
+        }) {
+            return Some(v);
+        }
+        let v = Interval::pi_uncached(p)?;
+        PI.with(|c| {
+            let mut c = c.borrow_mut();
+            if c.len() < 16 {
+                c.push((p.bits, v.clone()));
+            }
+        });
+        Some(v)
+    }
+
+    fn pi_uncached(p: Prec) -> Option<Interval> {
         let wp = p.plus(16);
         let a = atan_inv(5, wp)?.mul(&Interval::int(16), wp)?;
         let b = atan_inv(239, wp)?.mul(&Interval::int(4), wp)?;

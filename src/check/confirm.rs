@@ -74,8 +74,7 @@ impl Checker<'_, '_> {
                 continue;
             };
             let env = &self.guard_env;
-            let (Ok(a), Ok(b)) = (guard::eval(lhs, env, &point), guard::eval(rhs, env, &point))
-            else {
+            let (Ok(a), Ok(b)) = guard::eval_both(lhs, rhs, env, &point) else {
                 continue;
             };
             if disagrees(input.link.op, &a, &b) {
@@ -135,10 +134,12 @@ impl Checker<'_, '_> {
             point.insert(e.name.name.clone(), v.mid);
             exact.insert(a.0, Q::from_f64(v.mid)?);
         }
+        // Atoms' values carry over from one evaluation to the next: the point only grows.
+        let mut memo = HashMap::new();
         for s in sit.steps.iter().rev() {
-            let mut ev = Evaluator::new(&exact);
-            ev.prec = Prec::new(160);
+            let mut ev = Evaluator::with_values(&exact, Prec::new(128), memo);
             let v = ev.rat(&s.value)?.midpoint();
+            memo = ev.values();
             if let Some(n) = atom::sym_name(s.unknown) {
                 point.insert(n, v.to_f64()?);
             }
@@ -147,13 +148,10 @@ impl Checker<'_, '_> {
         // The facts must hold there (else the point says nothing); with `strict`, a fact
         // that cannot be evaluated there fails the point too.
         let tiny = Q::new(1.into(), num_bigint::BigInt::from(10).pow(20));
-        let holds = sit.facts.iter().all(|f| {
-            let mut ev = Evaluator::new(&exact);
-            ev.prec = Prec::new(160);
-            match ev.rat(&f.value) {
-                Some(v) => v.lo() >= &-tiny.clone() && v.hi() <= &tiny,
-                None => !sit.strict,
-            }
+        let mut ev = Evaluator::with_values(&exact, Prec::new(128), memo);
+        let holds = sit.facts.iter().all(|f| match ev.rat(&f.value) {
+            Some(v) => v.lo() >= &-tiny.clone() && v.hi() <= &tiny,
+            None => !sit.strict,
         });
         let unknown_left = names.iter().any(|n| {
             let a = atom::sym(n);
@@ -176,10 +174,7 @@ impl Checker<'_, '_> {
             return Ok(());
         };
         let env = &self.guard_env;
-        let (Ok(a), Ok(b)) = (
-            guard::eval(input.lhs_expr, env, &point),
-            guard::eval(&input.link.rhs, env, &point),
-        ) else {
+        let (Ok(a), Ok(b)) = guard::eval_both(input.lhs_expr, &input.link.rhs, env, &point) else {
             return Ok(());
         };
         let scale = 1f64.max(a.mid.abs()).max(b.mid.abs());

@@ -29,6 +29,19 @@ pub fn eval(e: &Expr, env: &GuardEnv, point: &HashMap<String, f64>) -> Result<Ba
     eval::Evaluator::new(env, point, 2_000_000).eval(e)
 }
 
+/// The values of two expressions at one point (definitions computed once for both).
+pub fn eval_both(
+    a: &Expr,
+    b: &Expr,
+    env: &GuardEnv,
+    point: &HashMap<String, f64>,
+) -> (Result<Ball, Skip>, Result<Ball, Skip>) {
+    let mut ev = eval::Evaluator::new(env, point, 4_000_000);
+    let x = ev.eval(a);
+    let y = ev.eval(b);
+    (x, y)
+}
+
 /// The symbols `e` needs a value for: free names, `let` names expanded, bound
 /// variables and body coordinates excluded.
 pub fn free_symbols(e: &Expr, env: &GuardEnv) -> HashSet<String> {
