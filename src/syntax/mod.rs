@@ -4,6 +4,7 @@ pub mod ast;
 pub mod error;
 pub mod expr;
 pub mod file;
+pub mod latex;
 
 mod chain;
 mod lex;

@@ -360,6 +360,38 @@ fn abstract_<'a>(cx: &Cx<'a>, i: &'a str) -> PResult<'a, BodyDef> {
 
 /// `let = "let" name "=" expr`.
 fn let_<'a>(cx: &Cx<'a>, i: &'a str) -> PResult<'a, StmtKind> {
+    if let Some(r) = latex_chain(cx, i) {
+        let (rest, chain) = r?;
+        let at = ws(cx, i);
+        let (crate::syntax::ast::ExprKind::Sym(n), [link]) =
+            (&chain.first.kind, chain.links.as_slice())
+        else {
+            return failure(
+                at,
+                2,
+                "`let $$ name = … $$` defines one name by one equation",
+            );
+        };
+        if link.op != crate::syntax::ast::RelOp::Eq {
+            return failure(
+                at,
+                2,
+                "`let $$ name = … $$` defines one name by one equation",
+            );
+        }
+        end(cx, rest, "the end of the statement after `$$`")?;
+        let name = Name {
+            name: n.clone(),
+            span: chain.first.span,
+        };
+        return Ok((
+            rest,
+            StmtKind::Let {
+                name,
+                value: link.rhs.clone(),
+            },
+        ));
+    }
     let (i, name) = name(cx, i, "a name after `let`", false)?;
     let Some((_, i)) = punct(cx, i, "=").filter(|(at, _)| !at.starts_with("==")) else {
         return expected(cx, i, &format!("`=` after `let {}`", name.name));
@@ -367,6 +399,31 @@ fn let_<'a>(cx: &Cx<'a>, i: &'a str) -> PResult<'a, StmtKind> {
     let (i, value) = expr(cx, i, "=")?;
     end(cx, i, "an operator or the end of the statement")?;
     Ok((i, StmtKind::Let { name, value }))
+}
+
+/// `$$ latex $$`: a relation in LaTeX (FORMAT.md §1, "LaTeX math"); `None` when the
+/// statement does not continue with `$$`.
+fn latex_chain<'a>(cx: &Cx<'a>, i: &'a str) -> Option<PResult<'a, Chain>> {
+    let at = ws(cx, i);
+    let inside = at.strip_prefix("$$")?;
+    let Some(k) = inside.find("$$") else {
+        return Some(failure(at, 2, "`$$` without the closing `$$` on its line"));
+    };
+    let math = inside.get(..k).unwrap_or("");
+    let rest = inside.get(k + 2..).unwrap_or("");
+    let opts = super::error::ParseOptions {
+        max_depth: cx.max_depth,
+    };
+    Some(
+        match super::latex::parse_latex_chain(math, cx.pos(inside), &opts) {
+            Ok(chain) => Ok((rest, chain)),
+            Err(e) => {
+                let off = e.span.start.saturating_sub(cx.pos(inside));
+                let at = inside.get(off..).unwrap_or(inside);
+                failure(at, e.span.end.saturating_sub(e.span.start), e.message)
+            }
+        },
+    )
 }
 
 /// `fact = ("given" | "constraint" | "claim") [label] chain`, and for a claim
@@ -387,7 +444,25 @@ fn fact<'a>(cx: &Cx<'a>, i: &'a str, kw: &'a str) -> PResult<'a, StmtKind> {
         by: true,
         where_: claim,
     };
-    let (i, (first, links)) = chain_or_expr(cx, i, rules)?;
+    let (i, (first, links)) = match latex_chain(cx, i) {
+        Some(r) => {
+            let (i, mut chain) = r?;
+            // `$$ … $$ by [Fx]`: the justification of the last link.
+            let i = match keyword(cx, i, "by") {
+                Some((by_at, after_by)) => {
+                    let (rest, (by, span)) = by_clause(cx, by_at, after_by, rules)?;
+                    if let Some(last) = chain.links.last_mut() {
+                        last.span = last.span.to(span);
+                        last.by = Some((by, span));
+                    }
+                    rest
+                }
+                None => i,
+            };
+            (i, (chain.first, chain.links))
+        }
+        None => chain_or_expr(cx, i, rules)?,
+    };
     if links.is_empty() {
         return expected(
             cx,
