@@ -140,8 +140,14 @@ pub fn check_paths(paths: &[PathBuf], opts: &Options) -> Vec<FileReport> {
                 .filter(|d| !d.as_os_str().is_empty())
                 .map_or_else(|| PathBuf::from("."), Path::to_path_buf)
         };
-        if let Err(e) = collect(p, &mut jobs, &root) {
-            early.push((jobs.len(), unreadable(p, e)));
+        let before = jobs.len();
+        match collect(p, &mut jobs, &root) {
+            Err(e) => early.push((jobs.len(), unreadable(p, e))),
+            // A folder with no derivation in it is a mistyped path, not a pass.
+            Ok(()) if jobs.len() == before => {
+                early.push((jobs.len(), unreadable(p, "no `.deriv` file in it".into())))
+            }
+            Ok(()) => {}
         }
     }
     let results: Mutex<Vec<Option<FileReport>>> = Mutex::new(vec![None; jobs.len()]);

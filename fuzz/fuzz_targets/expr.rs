@@ -13,8 +13,9 @@ fuzz_target!(|data: &[u8]| {
     };
     // Whatever parses is lowered too, within a small budget: no input may panic.
     rigor::normal::poly::set_max_terms(2_000);
-    rigor::normal::poly::set_deadline(Some(
-        std::time::Instant::now() + std::time::Duration::from_millis(200),
+    rigor::normal::poly::set_deadline(rigor::clock::Deadline::after(
+        std::time::Duration::from_millis(200),
+        rigor::clock::system(),
     ));
     let _ = rigor::lower::lower(&e, &rigor::lower::Env::default());
     rigor::normal::poly::set_deadline(None);

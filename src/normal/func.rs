@@ -196,7 +196,7 @@ fn root_poly(p: &Poly, n: u32, s: &Assumptions) -> Result<Rat, NormError> {
 }
 
 /// `u` when `p` is `1 − sin(u)²`.
-fn one_minus_sin_squared(p: &Poly) -> Option<Rat> {
+pub(super) fn one_minus_sin_squared(p: &Poly) -> Option<Rat> {
     let [(m1, c1), (m2, c2)] = p.terms() else {
         return None;
     };

@@ -34,6 +34,7 @@ fn passing_fixtures_verify() {
             rendered(&r, path)
         );
         assert!(r.links() > 0 || r.claims.is_empty(), "claims are checked");
+        insta::assert_snapshot!(justified(&r));
     });
 }
 
@@ -69,6 +70,28 @@ fn justification(s: &Status) -> String {
     }
 }
 
+/// Each claim's links and how each was justified.
+fn justified(r: &FileReport) -> String {
+    let mut out = String::new();
+    for c in &r.claims {
+        let label = c
+            .label
+            .clone()
+            .map_or_else(|| "(unlabelled)".into(), |l| format!("[{l}]"));
+        out.push_str(&format!("{label} line {}\n", c.line));
+        for l in &c.links {
+            out.push_str(&format!(
+                "    {} {} {}    -- {}\n",
+                l.lhs.as_deref().unwrap_or("?"),
+                l.op,
+                l.rhs.as_deref().unwrap_or("?"),
+                justification(&l.status)
+            ));
+        }
+    }
+    out
+}
+
 #[test]
 fn handout_derivations_verify() {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("derivations");
@@ -80,23 +103,7 @@ fn handout_derivations_verify() {
             dir.display(),
             rendered(&r, path)
         );
-        let mut out = String::new();
-        for c in &r.claims {
-            let label = c
-                .label
-                .clone()
-                .map_or_else(|| "(unlabelled)".into(), |l| format!("[{l}]"));
-            out.push_str(&format!("{label} line {}\n", c.line));
-            for l in &c.links {
-                out.push_str(&format!(
-                    "    {} {} {}    -- {}\n",
-                    l.lhs.as_deref().unwrap_or("?"),
-                    l.op,
-                    l.rhs.as_deref().unwrap_or("?"),
-                    justification(&l.status)
-                ));
-            }
-        }
+        let out = justified(&r);
         insta::assert_snapshot!(out);
     });
 }
@@ -138,8 +145,12 @@ fn fixtures_with_an_expectation_fail_with_that_code_on_that_line() {
     entries.sort();
     for path in entries {
         let text = std::fs::read_to_string(&path).expect("readable fixture");
-        let Some((code, line)) = expectation(text.lines().next().unwrap_or_default()) else {
-            continue;
+        let first_line = text.lines().next().unwrap_or_default();
+        let Some((code, line)) = expectation(first_line) else {
+            panic!(
+                "{}: the first line must be `% expect CODE line N: …`",
+                path.display()
+            );
         };
         let r = check_one(&path);
         let first = r

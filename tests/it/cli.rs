@@ -557,3 +557,18 @@ fn usage_errors_exit_2_and_help_exits_0() {
     expect_code(&r, 0, "--version");
     assert!(r.stdout.starts_with("rigor "));
 }
+
+#[test]
+fn check_on_a_folder_without_derivations_is_an_error_naming_it() {
+    let dir = std::env::temp_dir().join(format!("rigor-empty-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temporary folder");
+    let path = dir.display().to_string();
+    let r = run(&["check", &path]);
+    expect_code(&r, 2, "check on an empty folder");
+    assert!(
+        r.stderr.contains(&path) && r.stderr.contains("no `.deriv` file"),
+        "{}",
+        r.stderr
+    );
+    let _ = std::fs::remove_dir(&dir);
+}

@@ -10,6 +10,7 @@ mod hostile;
 mod library;
 mod normal;
 mod props;
+mod readme;
 mod soundness;
 mod workloads;
 
