@@ -30,5 +30,6 @@ pub mod normal;
 pub mod render;
 pub mod solve;
 pub mod syntax;
+pub mod units;
 
 pub use check::{check_source, FileReport, MemoryResolver, Options, Resolver};

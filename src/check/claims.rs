@@ -53,6 +53,11 @@ impl Checker<'_, '_> {
         let Some(subs) = self.where_subs(where_) else {
             return self.push_error_claim(claim, chain);
         };
+        // Units first: a link whose sides disagree in units fails before any algebra.
+        let exprs: Vec<&Expr> = std::iter::once(&chain.first)
+            .chain(chain.links.iter().map(|l| &l.rhs))
+            .collect();
+        let dims = self.dims(&exprs, span);
         let mut divs = Vec::new();
         let Some(first) = self.lower(&chain.first, &mut divs) else {
             return self.push_error_claim(claim, chain);
@@ -105,7 +110,14 @@ impl Checker<'_, '_> {
                 divisors: &all_divs,
                 deadline,
             };
-            let status = self.check_link(&input).unwrap_or_else(|d| {
+            let units = dims
+                .as_ref()
+                .and_then(|d| Self::link_units(d.get(i)?, d.get(i + 1)?, span));
+            let status = match units {
+                Some(d) => Err(d),
+                None => self.check_link(&input),
+            }
+            .unwrap_or_else(|d| {
                 self.report.diagnostics.push(d);
                 Status::Failed
             });

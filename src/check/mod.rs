@@ -13,6 +13,7 @@
 //! | `conditions.rs` | side conditions of a link: assumed, settled, or failing it |
 //! | `explain.rs` | a link that fails: refutation (only where the facts allow), or why not |
 //! | `confirm.rs` | the guard: both sides as written, evaluated independently at points |
+//! | `dims.rs` | units: the `units` statement and the dimensions of every relation |
 //! | `relations.rs` | `!=`, `<`, `<=`, `>`, `>=` and `~=` links |
 //! | `signs.rs` | signs of differences and divisors, values against declared signs |
 //! | `solve.rs` | elimination of unknowns, contradictions, zero divisors |
@@ -21,6 +22,7 @@
 mod claims;
 mod conditions;
 mod confirm;
+mod dims;
 mod entry;
 mod explain;
 mod imports;

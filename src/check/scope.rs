@@ -53,7 +53,7 @@ impl Scope {
     pub fn suggest(&self, name: &str) -> Option<String> {
         let mut best: Option<(usize, String)> = None;
         for cand in self.names.keys() {
-            let d = distance(&name.to_lowercase(), &cand.to_lowercase())
+            let d = crate::diag::distance(&name.to_lowercase(), &cand.to_lowercase())
                 + usize::from(name.to_lowercase() != cand.to_lowercase() || name != cand);
             let limit = 1 + name.len() / 3;
             if d <= limit + 1
@@ -66,24 +66,6 @@ impl Scope {
         }
         best.map(|b| b.1)
     }
-}
-
-/// Levenshtein distance.
-fn distance(a: &str, b: &str) -> usize {
-    let a: Vec<char> = a.chars().collect();
-    let b: Vec<char> = b.chars().collect();
-    let mut prev: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.iter().enumerate() {
-        let mut cur = vec![i + 1];
-        for (j, cb) in b.iter().enumerate() {
-            let sub = prev[j] + usize::from(ca != cb);
-            let del = prev[j + 1] + 1;
-            let ins = cur[j] + 1;
-            cur.push(sub.min(del).min(ins));
-        }
-        prev = cur;
-    }
-    prev[b.len()]
 }
 
 /// Every use of an undeclared name in `e`, with its span, honouring bound variables.

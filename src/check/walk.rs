@@ -53,6 +53,8 @@ pub struct Checker<'l, 'o> {
     pub(super) small: Vec<(String, u32)>,
     /// The labels `result` names (checked at the end of the file).
     results: Vec<Label>,
+    /// Declared units of symbols; once any is declared, relations are checked for them.
+    pub(super) units: HashMap<String, crate::units::Dim>,
 }
 
 impl<'l, 'o> Checker<'l, 'o> {
@@ -74,6 +76,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             guard_env: crate::guard::GuardEnv::default(),
             small: Vec::new(),
             results: Vec::new(),
+            units: HashMap::new(),
         }
     }
 
@@ -310,7 +313,9 @@ impl<'l, 'o> Checker<'l, 'o> {
                             d.name.span,
                             &hint,
                         );
+                        continue;
                     }
+                    self.declare_unit(d);
                 }
             }
             StmtKind::Body { name, def } => self.body(name, def),
@@ -327,6 +332,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             StmtKind::Given { label, chain } | StmtKind::Constraint { label, chain } => {
                 let is_constraint = matches!(kind, StmtKind::Constraint { .. });
                 let label = self.new_label(label);
+                self.fact_units(chain, span);
                 self.given(label, chain, span, is_constraint);
             }
             StmtKind::Claim {
