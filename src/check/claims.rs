@@ -104,6 +104,7 @@ impl Checker<'_, '_> {
                 rhs: &rhs,
                 lhs_expr,
                 where_,
+                first_link: i == 0,
                 link,
                 span,
                 subs: &subs,

@@ -144,7 +144,16 @@ impl Checker<'_, '_> {
             return with_notes(d, Vec::new());
         }
         if let Some(e) = red.elim.as_ref().filter(|e| !e.stuck.is_empty()) {
-            let (d, extra) = self.undetermined(&e.stuck, &e.target, (&ra, &rb), span);
+            let (mut d, mut extra) = self.undetermined(&e.stuck, &e.target, (&ra, &rb), span);
+            // One term that, changed, makes the step follow is the likelier mistake than
+            // a missing fact.
+            if let Some(why) = self.term_diagnosis(input, &e.target, &e.steps) {
+                d.message = format!("not verified: {why}");
+                if let Some(p) = d.primary.as_mut() {
+                    p.1 = "changed this way, the step follows from the facts".into();
+                }
+                extra.retain(|n| !n.starts_with("a fact about") && !n.starts_with("if "));
+            }
             return with_notes(d, extra);
         }
         match crate::decide::decide_where(&ra, &rb, &self.env.signs, defined) {
@@ -165,7 +174,16 @@ impl Checker<'_, '_> {
                         return with_notes(d, Vec::new());
                     }
                 }
-                let label = diagnosis.unwrap_or_else(|| "the two sides differ".into());
+                let target = ra.sub(&rb).unwrap_or_else(|_| Rat::zero());
+                // A whole side off by a constant factor (or a sign) says it best.
+                let whole = diagnosis
+                    .as_deref()
+                    .is_some_and(|d| d.contains("constant factor") || d.contains("opposite signs"));
+                let label = (!whole)
+                    .then(|| self.term_diagnosis(input, &target, &steps))
+                    .flatten()
+                    .or(diagnosis)
+                    .unwrap_or_else(|| "the two sides differ".into());
                 let d = Diagnostic::error(
                     "E0301",
                     format!("this step does not hold{using}"),

@@ -14,6 +14,7 @@
 //! | `explain.rs` | a link that fails: refutation (only where the facts allow), or why not |
 //! | `confirm.rs` | the guard: both sides as written, evaluated independently at points |
 //! | `dims.rs` | units: the `units` statement and the dimensions of every relation |
+//! | `terms.rs` | the one term, as written, whose sign, factor or power explains a failure |
 //! | `relations.rs` | `!=`, `<`, `<=`, `>`, `>=` and `~=` links |
 //! | `signs.rs` | signs of differences and divisors, values against declared signs |
 //! | `solve.rs` | elimination of unknowns, contradictions, zero divisors |
@@ -32,6 +33,7 @@ pub mod scope;
 mod signs;
 pub mod solve;
 mod step;
+mod terms;
 mod walk;
 
 pub use entry::{check_source, Exports, MemoryResolver, Options, Resolver, Source};

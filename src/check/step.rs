@@ -24,6 +24,8 @@ pub(super) struct LinkInput<'a> {
     pub lhs_expr: &'a Expr,
     /// The claim's `where` as written.
     pub where_: &'a [Assign],
+    /// Whether this is the first link of its claim (both sides newly written).
+    pub first_link: bool,
     /// The link as written (relation, right side, `by`).
     pub link: &'a Link,
     /// Where to report.

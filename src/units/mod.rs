@@ -385,7 +385,11 @@ mod tests {
             "{}",
             show("kgg")
         );
-        assert!(show("N m/s/s").contains("second `/`"), "{}", show("N m/s/s"));
+        assert!(
+            show("N m/s/s").contains("second `/`"),
+            "{}",
+            show("N m/s/s")
+        );
         assert!(show("Nm").contains("unknown unit `Nm`"), "{}", show("Nm"));
         assert!(show("").contains("empty"));
         assert!(
