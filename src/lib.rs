@@ -25,6 +25,7 @@ pub mod diag;
 pub mod files;
 pub mod guard;
 pub mod interval;
+pub mod lint;
 pub mod lower;
 pub mod normal;
 pub mod render;

@@ -90,6 +90,15 @@ enum Command {
         #[arg(short)]
         o: Option<std::path::PathBuf>,
     },
+    /// Check the chains of equations inside Markdown (`$$…$$`) and LaTeX documents.
+    Lint {
+        /// The documents (`.md`, `.tex`).
+        #[arg(required = true)]
+        docs: Vec<std::path::PathBuf>,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = Format::Human)]
+        format: Format,
+    },
     /// Write a derivation as a Markdown worked solution.
     Markdown {
         /// The derivation file.
@@ -141,6 +150,7 @@ fn main() -> ExitCode {
         } => cli::check(&paths, format, verbose, timeout, max_file_size, &opts),
         Command::Latex { file, o } => cli::document(&file, o.as_deref(), true, &opts),
         Command::Markdown { file, o } => cli::document(&file, o.as_deref(), false, &opts),
+        Command::Lint { docs, format } => cli::lint(&docs, format, timeout, &opts),
     };
     ExitCode::from(code)
 }

@@ -353,3 +353,56 @@ fn write_atomically(path: &Path, text: &str) -> std::io::Result<()> {
         let _ = std::fs::remove_file(&tmp);
     })
 }
+
+/// `rigor lint`: each chain verified, failed or needing context; exit 1 when one failed.
+pub fn lint(
+    docs: &[std::path::PathBuf],
+    format: Format,
+    timeout: std::time::Duration,
+    opts: &ParseOptions,
+) -> u8 {
+    use rigor::lint::{DocKind, Verdict};
+    let options = rigor::check::Options {
+        parse: *opts,
+        timeout,
+        ..rigor::check::Options::default()
+    };
+    let mut bad_input = false;
+    let mut reports = Vec::new();
+    for d in docs {
+        let name = d.display().to_string();
+        match rigor::files::read(d, options.max_file_size) {
+            Ok(text) => reports.push(rigor::lint::lint(
+                &name,
+                &text,
+                DocKind::of(&name),
+                &options,
+            )),
+            Err(e) => {
+                errln!("error: cannot read {name}: {e}");
+                bad_input = true;
+            }
+        }
+    }
+    for r in &reports {
+        match format {
+            Format::Json => outln!("{}", rigor::render::lint::json(r)),
+            Format::Github => out!("{}", rigor::render::lint::github(r)),
+            Format::Human => {
+                let (out, err) = rigor::render::lint::human(r);
+                out!("{out}");
+                err!("{err}");
+            }
+        }
+    }
+    if format == Format::Human {
+        outln!("{}", rigor::render::lint::summary(&reports));
+    }
+    if bad_input {
+        2
+    } else if reports.iter().any(|r| r.count(&Verdict::Failed) > 0) {
+        1
+    } else {
+        0
+    }
+}

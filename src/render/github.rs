@@ -14,6 +14,16 @@ pub fn report(r: &FileReport) -> String {
     r.diagnostics.iter().map(|d| command(r, d)).collect()
 }
 
+/// One workflow command for a diagnostic of the file `path` with text `source`.
+pub fn command_for(path: &str, source: &str, d: &Diagnostic) -> String {
+    let r = FileReport {
+        path: path.to_string(),
+        source: source.to_string(),
+        ..FileReport::default()
+    };
+    command(&r, d)
+}
+
 fn command(r: &FileReport, d: &Diagnostic) -> String {
     let kind = match d.severity {
         Severity::Error => "error",

@@ -11,6 +11,7 @@ pub mod github;
 pub mod human;
 pub mod json;
 pub mod latex;
+pub mod lint;
 pub mod markdown;
 mod solution;
 mod text;

@@ -175,6 +175,30 @@ pub fn parse_latex_chain(
     Ok(Chain { first, links })
 }
 
+/// Parses the links of a chain that continues an earlier display (`= b = c`).
+pub fn parse_latex_links(
+    text: &str,
+    base: usize,
+    opts: &ParseOptions,
+) -> Result<Vec<Link>, SyntaxError> {
+    let mut p = P::new(text, base, opts)?;
+    let mut links = Vec::new();
+    while let Some((op, at)) = p.relop() {
+        let rhs = p.expr()?;
+        links.push(Link {
+            op,
+            span: Span::new(at.start, rhs.span.end),
+            rhs,
+            by: None,
+        });
+    }
+    p.trailer()?;
+    if links.is_empty() {
+        return Err(p.error_here("a relation (`=`, `\\approx`, `<`, …)"));
+    }
+    Ok(links)
+}
+
 struct P {
     toks: Vec<(Tok, Span)>,
     pos: usize,
@@ -470,8 +494,11 @@ impl P {
     /// `factor = primary ["'"…] ["^" arg]`.
     fn factor(&mut self) -> Result<Expr, SyntaxError> {
         self.nest()?;
+        let start = self.span();
         let base = self.primary()?;
-        let e = self.power(base)?;
+        let mut e = self.power(base)?;
+        // The factor covers everything it consumed, closing braces and brackets too.
+        e.span = start.to(self.last_span());
         self.depth -= 1;
         Ok(e)
     }

@@ -8,6 +8,7 @@ mod fuzz;
 mod guard;
 mod hostile;
 mod library;
+mod lint;
 mod normal;
 mod props;
 mod readme;

@@ -1,0 +1,90 @@
+//! `rigor lint` reports: one line per chain (`doc.md:12:5: verified`), the diagnostics of
+//! failed chains rustc-style, JSON and GitHub annotations, and the summary line.
+
+use crate::diag::line_col;
+use crate::lint::{LintReport, Verdict};
+use serde_json::json;
+
+fn word(v: &Verdict) -> &'static str {
+    match v {
+        Verdict::Verified => "verified",
+        Verdict::Failed => "failed",
+        Verdict::NeedsContext => "needs context",
+    }
+}
+
+/// The human report: (standard output, standard error).
+pub fn human(r: &LintReport) -> (String, String) {
+    let (mut out, mut err) = (String::new(), String::new());
+    for c in &r.chains {
+        let (line, col) = line_col(&r.source, c.span.start);
+        let why = c
+            .diagnostics
+            .first()
+            .map_or(String::new(), |d| format!(": {}", d.message));
+        match c.verdict {
+            Verdict::Verified => out.push_str(&format!("{}:{line}:{col}: verified\n", r.path)),
+            Verdict::NeedsContext => {
+                out.push_str(&format!("{}:{line}:{col}: needs context{why}\n", r.path))
+            }
+            Verdict::Failed => {
+                out.push_str(&format!("{}:{line}:{col}: FAILED{why}\n", r.path));
+                for d in &c.diagnostics {
+                    err.push_str(&crate::diag::render(d, &r.path, &r.source));
+                }
+            }
+        }
+    }
+    (out, err)
+}
+
+/// `chains: N, verified: V, failed: F, needs context: C`.
+pub fn summary(reports: &[LintReport]) -> String {
+    let n: usize = reports.iter().map(|r| r.chains.len()).sum();
+    let c = |v: Verdict| -> usize { reports.iter().map(|r| r.count(&v)).sum() };
+    format!(
+        "chains: {n}, verified: {}, failed: {}, needs context: {}",
+        c(Verdict::Verified),
+        c(Verdict::Failed),
+        c(Verdict::NeedsContext)
+    )
+}
+
+/// One JSON object per document.
+pub fn json(r: &LintReport) -> String {
+    let chains: Vec<serde_json::Value> = r
+        .chains
+        .iter()
+        .map(|c| {
+            let (line, column) = line_col(&r.source, c.span.start);
+            let diags: Vec<serde_json::Value> = c
+                .diagnostics
+                .iter()
+                .map(|d| {
+                    let at = d.primary.as_ref().map(|(s, _)| line_col(&r.source, s.start));
+                    json!({"code": d.code, "message": d.message, "notes": d.notes,
+                           "line": at.map(|a| a.0), "column": at.map(|a| a.1)})
+                })
+                .collect();
+            json!({"line": line, "column": column, "verdict": word(&c.verdict), "diagnostics": diags})
+        })
+        .collect();
+    json!({
+        "path": r.path,
+        "chains": chains,
+        "verified": r.count(&Verdict::Verified),
+        "failed": r.count(&Verdict::Failed),
+        "needs_context": r.count(&Verdict::NeedsContext),
+    })
+    .to_string()
+}
+
+/// GitHub annotations for failed chains.
+pub fn github(r: &LintReport) -> String {
+    r.chains
+        .iter()
+        .filter(|c| c.verdict == Verdict::Failed)
+        .flat_map(|c| c.diagnostics.iter())
+        .map(|d| super::github::command_for(&r.path, &r.source, d))
+        .collect()
+}
