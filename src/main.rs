@@ -66,6 +66,10 @@ enum Command {
         /// Print LaTeX instead of rigor's syntax.
         #[arg(long)]
         latex: bool,
+        /// Units of the symbols, as in a `units` statement ("m: kg, L: m"): the expression's
+        /// unit is printed too, and an inconsistent one is an error.
+        #[arg(long)]
+        units: Option<String>,
     },
     /// Decide whether two expressions are equal.
     Equiv {
@@ -81,6 +85,9 @@ enum Command {
         /// A body (repeatable).
         #[arg(long)]
         body: Vec<String>,
+        /// Units of the symbols ("m: kg, L: m"): sides in different units are not equal.
+        #[arg(long)]
+        units: Option<String>,
     },
     /// Write a derivation as a standalone LaTeX worked solution.
     Latex {
@@ -140,8 +147,15 @@ fn main() -> ExitCode {
             assume,
             body,
             latex,
-        } => cli::simplify(&expr, &assume, &body, latex, &opts),
-        Command::Equiv { a, b, assume, body } => cli::equiv(&a, &b, &assume, &body, &opts),
+            units,
+        } => cli::simplify(&expr, &assume, &body, (latex, units.as_deref()), &opts),
+        Command::Equiv {
+            a,
+            b,
+            assume,
+            body,
+            units,
+        } => cli::equiv((&a, &b), &assume, &body, units.as_deref(), &opts),
         Command::Check {
             paths,
             format,

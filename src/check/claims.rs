@@ -14,6 +14,7 @@ use crate::normal::atom::{self, AtomId};
 use crate::normal::print::plain;
 use crate::normal::Rat;
 use crate::syntax::ast::{Assign, By, Chain, Expr, ExprKind, RelOp, Span};
+use crate::units::check::DimV;
 
 /// An equation a verified link adds to the facts, with its conditions.
 type NewFact = (Rat, Vec<Condition>);
@@ -83,6 +84,7 @@ impl Checker<'_, '_> {
                     lhs: None,
                     rhs: None,
                     status,
+                    units: None,
                 });
                 break;
             };
@@ -128,12 +130,19 @@ impl Checker<'_, '_> {
                     new_facts.push((v, self.fact_conditions(all_divs)));
                 }
             }
+            let link_units = dims.as_ref().and_then(|d| match (d.get(i), d.get(i + 1)) {
+                (Some(Ok(DimV::D(a))), Some(Ok(b))) if DimV::D(a.clone()).agrees(b) => {
+                    Some(a.si().to_string())
+                }
+                _ => None,
+            });
             claim.links.push(LinkReport {
                 span,
                 op: link.op,
                 lhs: Some(plain(&prev)),
                 rhs: Some(plain(&rhs)),
                 status,
+                units: link_units,
             });
             prev = rhs;
             prev_divs = divs;
@@ -279,6 +288,7 @@ impl Checker<'_, '_> {
                 lhs: None,
                 rhs: None,
                 status: status.clone(),
+                units: None,
             });
         }
         self.report.claims.push(claim);

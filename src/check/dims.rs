@@ -5,7 +5,7 @@
 use super::walk::Checker;
 use crate::diag::Diagnostic;
 use crate::syntax::ast::{Chain, Expr, Span, UnitDecl};
-use crate::units::check::{dim_of, mismatch, DimV, UnitEnv, UnitProblem};
+use crate::units::check::{dim_and_scales, mismatch, DimV, UnitEnv, UnitProblem};
 
 impl Checker<'_, '_> {
     /// One `name: unit` of a `units` statement.
@@ -48,10 +48,17 @@ impl Checker<'_, '_> {
             time: &self.guard_env.time,
         };
         let mut missing = Vec::new();
+        let mut mixed = Vec::new();
         let out: Vec<_> = exprs
             .iter()
-            .map(|e| dim_of(e, &env, &mut missing))
+            .map(|e| dim_and_scales(e, &env, &mut missing, &mut mixed))
             .collect();
+        for m in mixed {
+            let mut d = Diagnostic::error("W0401", m.message, m.span, "mixed scales");
+            d.severity = crate::diag::Severity::Warning;
+            d.notes.extend(m.note);
+            self.report.diagnostics.push(d);
+        }
         if !missing.is_empty() {
             missing.sort();
             self.error(

@@ -97,6 +97,8 @@ pub struct LinkReport {
     pub rhs: Option<String>,
     /// The outcome.
     pub status: Status,
+    /// The unit of both sides, when the file declares units and they agree.
+    pub units: Option<String>,
 }
 
 /// One `claim` statement.

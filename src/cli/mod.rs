@@ -154,7 +154,7 @@ pub fn simplify(
     expr: &str,
     assume: &[String],
     bodies: &[String],
-    latex: bool,
+    (latex, units): (bool, Option<&str>),
     opts: &ParseOptions,
 ) -> u8 {
     let Ok(env) = options_env(assume, bodies, opts) else {
@@ -163,19 +163,91 @@ pub fn simplify(
     let Ok((r, _)) = lower_arg(expr, "<EXPR>", &env, opts) else {
         return 2;
     };
+    let dims = match units.map(|u| units_of(&[expr], u, opts)).transpose() {
+        Ok(d) => d,
+        Err(e) => {
+            errln!("error: {e}");
+            return 2;
+        }
+    };
     if latex {
         outln!("{}", print::latex(&r));
     } else {
         outln!("{}", print::plain(&r));
     }
+    if let Some(d) = dims.as_ref().and_then(|d| d.first()) {
+        outln!("units: {d}");
+    }
     0
 }
 
+/// The units (as `kg·m²`, or `any` for 0) of each expression, with `units` declared as
+/// in a `units` statement; the error says what is missing or inconsistent.
+fn units_of(exprs: &[&str], units: &str, opts: &ParseOptions) -> Result<Vec<String>, String> {
+    use rigor::units::check::{dim_of, DimV, UnitEnv};
+    let file = parse_file(&format!("units {units}"), opts)
+        .map_err(|e| format!("in --units: {}", e.message))?;
+    let mut map = std::collections::HashMap::new();
+    for item in &file.items {
+        if let rigor::syntax::ast::Item::Stmt(s) = item {
+            if let StmtKind::Units { decls } = &s.kind {
+                for d in decls {
+                    let u = rigor::units::parse_unit(&d.unit)
+                        .map_err(|e| format!("in --units, `{}`: {}", d.unit, e.message))?;
+                    map.insert(d.name.name.clone(), u);
+                }
+            }
+        }
+    }
+    let (defs, bodies, time) = Default::default();
+    let env = UnitEnv {
+        units: &map,
+        defs: &defs,
+        bodies: &bodies,
+        time: &time,
+    };
+    let mut out = Vec::new();
+    for e in exprs {
+        let tree = parse_expr(e, opts).map_err(|x| x.message)?;
+        let mut missing = Vec::new();
+        let d = dim_of(&tree, &env, &mut missing).map_err(|p| p.message)?;
+        if !missing.is_empty() {
+            return Err(format!("no unit is given for {}", missing.join(", ")));
+        }
+        out.push(match d {
+            DimV::Any => "any".to_string(),
+            DimV::D(d) => d.si().to_string(),
+        });
+    }
+    Ok(out)
+}
+
 /// `rigor equiv`.
-pub fn equiv(a: &str, b: &str, assume: &[String], bodies: &[String], opts: &ParseOptions) -> u8 {
+pub fn equiv(
+    (a, b): (&str, &str),
+    assume: &[String],
+    bodies: &[String],
+    units: Option<&str>,
+    opts: &ParseOptions,
+) -> u8 {
     let Ok(env) = options_env(assume, bodies, opts) else {
         return 2;
     };
+    if let Some(u) = units {
+        match units_of(&[a, b], u, opts) {
+            Err(e) => {
+                errln!("error: {e}");
+                return 2;
+            }
+            Ok(d) => {
+                let (x, y) = (&d[0], &d[1]);
+                if x != y && x != "any" && y != "any" {
+                    outln!("not equal\n  the left side is in {x}, the right side in {y}");
+                    return 1;
+                }
+            }
+        }
+    }
     let Ok((ra, mut conds)) = lower_arg(a, "<A>", &env, opts) else {
         return bad_input_or_undecided();
     };

@@ -71,6 +71,9 @@ fn link(r: &FileReport, l: &LinkReport) -> Value {
     obj.insert("lhs".into(), json!(l.lhs));
     obj.insert("rhs".into(), json!(l.rhs));
     obj.insert("status".into(), json!(status));
+    if let Some(u) = &l.units {
+        obj.insert("units".into(), json!(u));
+    }
     obj.insert("justification".into(), how);
     obj.insert("side_conditions".into(), json!(side));
     Value::Object(obj)

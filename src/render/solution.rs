@@ -297,7 +297,8 @@ impl<'a> Builder<'a> {
                         out.push(Inline::Text(", ".into()));
                     }
                     out.push(Inline::Math(symbol(&d.name.name)));
-                    out.push(Inline::Text(format!(" in {}", d.unit)));
+                    out.push(Inline::Text(" in ".into()));
+                    out.push(Inline::Math(crate::units::unit_latex(&d.unit)));
                 }
             }
             _ => {}

@@ -244,6 +244,7 @@ fn report_with(path: &str, src: &str, statuses: Vec<Status>) -> FileReport {
                         lhs: None,
                         rhs: None,
                         status,
+                        units: None,
                     });
                 }
                 let line = crate::diag::line_col(src, stmt.span.start).0;

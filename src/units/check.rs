@@ -63,10 +63,22 @@ pub struct UnitProblem {
 /// The dimension of `e`. `Err` for an inconsistency inside it; symbols without a
 /// unit are collected in `missing` (their dimension taken as 1).
 pub fn dim_of(e: &Expr, env: &UnitEnv<'_>, missing: &mut Vec<String>) -> Result<DimV, UnitProblem> {
+    dim_and_scales(e, env, missing, &mut Vec::new())
+}
+
+/// [`dim_of`], also collecting sums of one dimension in different scales (`L` in mm
+/// added to `R` in m): consistent, but a likely slip.
+pub fn dim_and_scales(
+    e: &Expr,
+    env: &UnitEnv<'_>,
+    missing: &mut Vec<String>,
+    mixed: &mut Vec<UnitProblem>,
+) -> Result<DimV, UnitProblem> {
     let mut w = Walk {
         env,
         bound: Vec::new(),
         missing,
+        mixed,
         depth: 0,
     };
     w.dim(e)
@@ -114,6 +126,7 @@ struct Walk<'a, 'm> {
     env: &'a UnitEnv<'a>,
     bound: Vec<(String, DimV)>,
     missing: &'m mut Vec<String>,
+    mixed: &'m mut Vec<UnitProblem>,
     depth: usize,
 }
 
@@ -190,6 +203,19 @@ impl Walk<'_, '_> {
                         ),
                         note: None,
                     });
+                }
+                (DimV::D(p), DimV::D(q)) if p.scale != q.scale => {
+                    self.mixed.push(UnitProblem {
+                        span,
+                        message: format!(
+                            "a sum of the same kind of quantity in different scales: {} and {} times {}",
+                            p.scale,
+                            q.scale,
+                            p.si()
+                        ),
+                        note: Some("convert one of them (mm to m is a factor 1/1000)".into()),
+                    });
+                    x
                 }
                 (DimV::Any, _) => y,
                 _ => x,

@@ -227,6 +227,62 @@ pub fn known_names() -> Vec<&'static str> {
     ]
 }
 
+/// A unit as written, typeset upright with thin spaces and no package beyond amsmath
+/// (`kg m^2` → `\mathrm{kg}\,\mathrm{m}^{2}`, `m/s^2` → `\mathrm{m}/\mathrm{s}^{2}`).
+pub fn unit_latex(unit: &str) -> String {
+    let mut out = String::new();
+    let mut chars = unit.trim().chars().peekable();
+    let mut pending_space = false;
+    while let Some(c) = chars.next() {
+        match c {
+            c if c.is_alphabetic() => {
+                let mut name = c.to_string();
+                while let Some(n) = chars.peek().filter(|n| n.is_alphabetic()) {
+                    name.push(*n);
+                    chars.next();
+                }
+                if pending_space && !out.is_empty() && !out.ends_with('/') {
+                    out.push_str("\\,");
+                }
+                pending_space = false;
+                let name = if name == "u" {
+                    "\\mu".to_string()
+                } else {
+                    name
+                };
+                out.push_str(&format!("\\mathrm{{{name}}}"));
+            }
+            '^' => {
+                let mut exp = String::new();
+                while let Some(n) = chars
+                    .peek()
+                    .filter(|n| n.is_ascii_digit() || matches!(n, '-' | '(' | ')' | '/' | ' '))
+                {
+                    if *n == ' ' && !exp.contains('(') {
+                        break;
+                    }
+                    exp.push(*n);
+                    chars.next();
+                }
+                let exp = exp
+                    .trim()
+                    .trim_start_matches('(')
+                    .trim_end_matches(')')
+                    .to_string();
+                out.push_str(&format!("^{{{exp}}}"));
+            }
+            '/' => {
+                out.push('/');
+                pending_space = false;
+            }
+            '*' | ' ' | '·' => pending_space = true,
+            '1' if out.is_empty() => out.push('1'),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
 /// Why a unit did not parse: the byte offset in the unit text and the message.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct UnitError {
@@ -398,5 +454,23 @@ mod tests {
             show("m + s")
         );
         assert!(show("mtr").contains("did you mean"), "{}", show("mtr"));
+    }
+}
+
+#[cfg(test)]
+mod latex_tests {
+    use super::unit_latex;
+
+    #[test]
+    fn units_are_typeset_upright_with_thin_spaces() {
+        assert_eq!(unit_latex("kg m^2"), r"\mathrm{kg}\,\mathrm{m}^{2}");
+        assert_eq!(unit_latex("m/s^2"), r"\mathrm{m}/\mathrm{s}^{2}");
+        assert_eq!(unit_latex("N"), r"\mathrm{N}");
+        assert_eq!(
+            unit_latex("kg*m/s^2"),
+            r"\mathrm{kg}\,\mathrm{m}/\mathrm{s}^{2}"
+        );
+        assert_eq!(unit_latex("m^(1/2)"), r"\mathrm{m}^{1/2}");
+        assert_eq!(unit_latex("1"), "1");
     }
 }

@@ -187,3 +187,13 @@ fn expectation_lines_parse() {
     );
     assert_eq!(expectation("% mistake: no code"), None);
 }
+
+#[test]
+fn mixed_scales_in_one_sum_are_a_warning_not_a_failure() {
+    let path =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/check/pass/units_mixed_scales.deriv");
+    let r = check_one(&path);
+    assert!(r.ok());
+    let warnings: Vec<&str> = r.diagnostics.iter().map(|d| d.code).collect();
+    assert_eq!(warnings, ["W0401", "W0401"]);
+}

@@ -572,3 +572,18 @@ fn check_on_a_folder_without_derivations_is_an_error_naming_it() {
     );
     let _ = std::fs::remove_dir(&dir);
 }
+
+#[test]
+fn json_gives_each_link_its_units_when_units_are_declared() {
+    let r = run(&["check", "--format", "json", "derivations/rod.deriv"]);
+    expect_code(&r, 0, "json with units");
+    let v: serde_json::Value = serde_json::from_str(r.stdout.trim()).expect("JSON");
+    let units: Vec<String> = v["claims"]
+        .as_array()
+        .expect("claims")
+        .iter()
+        .flat_map(|c| c["links"].as_array().cloned().unwrap_or_default())
+        .filter_map(|l| l["units"].as_str().map(str::to_string))
+        .collect();
+    assert!(units.iter().any(|u| u == "kg·m²"), "{units:?}");
+}
