@@ -104,6 +104,13 @@ fn decide_with(
     if crate::normal::trig::rebase(&d, s).is_ok_and(|r| r.is_zero()) {
         return Verdict::Equal;
     }
+    // Square roots of integers that share a factor (sqrt(p) sqrt(q) against sqrt(p q),
+    // p and q primes too large to find by trial division): over a coprime basis.
+    let d = match coprime_radicals(&d) {
+        Some(r) if r.is_zero() => return Verdict::Equal,
+        Some(r) => r,
+        None => d,
+    };
     let exact = independent(&d);
     if exact && !explain {
         return Verdict::NotEqual {
@@ -135,6 +142,73 @@ fn decide_with(
         exact,
         counterexample,
     }
+}
+
+/// `d` with square roots of positive integers rewritten over a coprime basis of their
+/// radicands (`sqrt(p q) = sqrt(p) sqrt(q)`), when two radicands share a factor.
+fn coprime_radicals(d: &Rat) -> Option<Rat> {
+    use num_integer::Integer;
+    let roots: Vec<(AtomId, BigInt)> = d
+        .atoms()
+        .into_iter()
+        .filter_map(|a| match &*atom::get(a) {
+            Atom::Sqrt(p) => p
+                .as_constant()
+                .filter(|q| q.is_integer() && q.numer() > &BigInt::one())
+                .map(|q| (a, q.to_integer())),
+            _ => None,
+        })
+        .collect();
+    if roots.len() < 2 {
+        return None;
+    }
+    let mut basis: Vec<BigInt> = roots.iter().map(|r| r.1.clone()).collect();
+    let mut split = false;
+    for _ in 0..64 {
+        basis.sort();
+        basis.dedup();
+        let pair = (0..basis.len())
+            .flat_map(|i| (i + 1..basis.len()).map(move |j| (i, j)))
+            .find(|&(i, j)| !basis[i].gcd(&basis[j]).is_one());
+        let Some((i, j)) = pair else {
+            break;
+        };
+        let g = basis[i].gcd(&basis[j]);
+        let (a, b) = (&basis[i] / &g, &basis[j] / &g);
+        basis = basis
+            .into_iter()
+            .enumerate()
+            .filter(|(k, _)| *k != i && *k != j)
+            .map(|(_, x)| x)
+            .chain([g, a, b])
+            .filter(|x| !x.is_one())
+            .collect();
+        split = true;
+    }
+    if !split {
+        return None;
+    }
+    let signs = Assumptions::new();
+    let mut values = Vec::new();
+    for (a, n) in &roots {
+        let mut rest = n.clone();
+        let mut v = Rat::one();
+        for b in &basis {
+            while !b.is_one() && (&rest % b).is_zero() {
+                rest /= b;
+                let s =
+                    crate::normal::func::sqrt(&Rat::constant(Q::from_integer(b.clone())), &signs)
+                        .ok()?;
+                v = v.mul(&s).ok()?;
+            }
+        }
+        if !rest.is_one() {
+            return None;
+        }
+        values.push((*a, v));
+    }
+    let map = |a: AtomId| values.iter().find(|v| v.0 == a).map(|v| v.1.clone());
+    crate::normal::subst::Subst::new(&map, &signs).rat(d).ok()
 }
 
 /// Atoms that satisfy no algebraic relation rigor does not already apply.

@@ -197,10 +197,15 @@ fn radicals_need_signs() {
 fn nothing_is_equal_by_sampling() {
     // Agree at every sample point but differ as normal forms: never `equal`.
     check("ln(a b)", "ln(a) + ln(b)", "", "undecided");
+}
+
+#[test]
+fn products_of_large_prime_radicals_are_equal() {
+    // 1000000007 · 1000000009 = 1000000016000000063: a true identity.
     check(
         "sqrt(1000000007) sqrt(1000000009)",
         "sqrt(1000000016000000063)",
         "",
-        "undecided",
+        "equal",
     );
 }

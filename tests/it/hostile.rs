@@ -10,7 +10,8 @@ use std::time::Duration;
 const GUARD: Duration = Duration::from_secs(30);
 
 /// Runs `rigor ARGS` and checks the common promises: a normal exit with `code`, not a
-/// panic, and (for a nonzero code) a diagnostic on stderr that contains `needle`.
+/// panic, and `needle` in the diagnostic on stderr (a nonzero code) or in the report
+/// on stdout (code 0).
 #[track_caller]
 fn expect(args: &[&str], code: i32, needle: &str, guard: Duration) -> Run {
     let r = run_with_limit(args, guard);
@@ -48,6 +49,13 @@ fn expect(args: &[&str], code: i32, needle: &str, guard: Duration) -> Run {
             args.join(" "),
             head(&r.stderr)
         );
+    } else {
+        assert!(
+            r.stdout.contains(needle),
+            "rigor {}: stdout lacks {needle:?}:\n{}",
+            args.join(" "),
+            head(&r.stdout)
+        );
     }
     r
 }
@@ -63,7 +71,7 @@ fn hostile(name: &str, code: i32, needle: &str) -> Run {
 #[test]
 fn empty_file_has_nothing_to_check() {
     // Intended: an empty file has no claims, so nothing fails (exit 0, `claims: 0`).
-    let r = hostile("empty.deriv", 0, "");
+    let r = hostile("empty.deriv", 0, "claims: 0");
     assert!(
         r.stdout.contains("files: 1, claims: 0"),
         "{}",
@@ -134,7 +142,7 @@ fn imports_are_confined_and_acyclic() {
     );
     hostile("absolute_use.deriv", 2, "not the absolute path");
     // The imported file itself is fine.
-    hostile("outside.deriv", 0, "");
+    hostile("outside.deriv", 0, "verified: 1, failed: 0");
 }
 
 #[test]
@@ -218,13 +226,8 @@ fn a_100k_line_file_finishes() {
         Duration::from_secs(60),
     );
     assert!(r.stdout.contains("failed: 1, errors: 0"), "{}", r.stdout);
-    if r.elapsed > Duration::from_secs(20) {
-        // A performance bug, not a failure: report it.
-        eprintln!(
-            "PERFORMANCE: checking 100,000 lines took {:?} (more than 20 s)",
-            r.elapsed
-        );
-    }
+    // Its speed is measured by the benchmarks, not asserted here (a timed test would
+    // fail on a busy machine and prove nothing on a fast one).
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -263,7 +266,7 @@ fn hostile_command_line_expressions() {
             "negative",
         ),
         (vec!["equiv", "f(x)", "x"], 2, "unknown function"),
-        (vec!["equiv", "(a+b)^100000", "1"], 1, ""),
+        (vec!["equiv", "(a+b)^100000", "1"], 1, "not equal"),
         (vec!["simplify", "\u{feff}x"], 2, "syntax error"),
     ] {
         let r = run_with_limit(&args, GUARD);
@@ -293,8 +296,10 @@ fn timeout_is_honoured_for_huge_numbers() {
         vec!["--timeout", "1", "simplify", "x'*III111.11^411111I"],
     ] {
         let r = run_with_limit(&args, GUARD);
-        // Done in time (0), refused or out of time (2 for simplify, 3 for equiv).
-        assert!(matches!(r.code(), 0 | 2 | 3), "{}", head(&r.stderr));
+        // Each of these is refused (the number would be too large), with exit 2 and
+        // the reason: never a result, never a wait.
+        assert_eq!(r.code(), 2, "{}", head(&r.stderr));
+        assert!(r.stderr.contains("refused"), "{}", head(&r.stderr));
         assert!(
             r.elapsed < Duration::from_secs(5),
             "rigor {}: {:?} with a 1 s budget",
