@@ -366,6 +366,9 @@ const CANDIDATES: [(i64, i64); 12] = [
     (29, 11),
 ];
 
+/// Values far from 1, for the second round of the counterexample search.
+const SPREAD: [(i64, i64); 6] = [(1000, 1), (1, 9), (41, 1), (5, 7), (97, 1), (1, 1000)];
+
 /// Searches a few points that respect the declared signs for one where `a` and `b`
 /// provably differ (exact rationals, or disjoint rigorous enclosures).
 pub fn find_counterexample(a: &Rat, b: &Rat, s: &Assumptions) -> Option<Counterexample> {
@@ -383,10 +386,16 @@ pub fn find_counterexample_where(
     symbols_in(a, &mut syms);
     symbols_in(b, &mut syms);
     syms.sort_by(|x, y| atom::cmp_atoms(*x, *y));
-    for k in 0..10usize {
+    // Ten points near 1, then sixteen far from it (large, tiny) with every pattern of
+    // signs the declarations allow: `abs` and roots of squares need both signs.
+    for k in 0..26usize {
         let mut point: HashMap<AtomId, Q> = HashMap::new();
         for (i, sym) in syms.iter().enumerate() {
-            let (n, d) = CANDIDATES[(i * 5 + k * 7 + k / 3) % CANDIDATES.len()];
+            let (n, d) = if k < 10 {
+                CANDIDATES[(i * 5 + k * 7 + k / 3) % CANDIDATES.len()]
+            } else {
+                SPREAD[(i * 3 + k) % SPREAD.len()]
+            };
             let t = Q::new(BigInt::from((i * 3 + k * 5) % 9 + 1), BigInt::from(10));
             match crate::normal::ranges::sample(s, *sym, &t) {
                 crate::normal::ranges::Sample::At(q) => {
@@ -399,7 +408,17 @@ pub fn find_counterexample_where(
             }
             let mut q = Q::new(BigInt::from(n), BigInt::from(d));
             let sign = s.declared(*sym);
-            if matches!(sign, Sign::Unknown | Sign::NonZero) && (i + k) % 3 == 1 {
+            let flip = if k < 10 {
+                (i + k) % 3 == 1
+            } else {
+                ((k - 10) >> (i % 4)) & 1 == 1
+            };
+            // Far from 1: a symbol made negative is large, so that it dominates a sum
+            // with positive ones (`m + R < 0` needs `m < -R`).
+            if k >= 10 && flip && matches!(sign, Sign::Unknown | Sign::NonZero) {
+                q = Q::from_integer(BigInt::from(1000 + i as i64));
+            }
+            if matches!(sign, Sign::Unknown | Sign::NonZero) && flip {
                 q = -q;
             }
             if matches!(sign, Sign::Neg | Sign::NonPos) {
