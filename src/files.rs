@@ -126,6 +126,62 @@ pub fn check_file(path: &Path, root: &Path, opts: &Options) -> FileReport {
     }
 }
 
+/// Every `.deriv` file of the files and folders given, each with the folder its imports
+/// must stay inside; an error names a path that cannot be read or holds none.
+pub fn collect_all(paths: &[PathBuf]) -> Result<Vec<(PathBuf, PathBuf)>, String> {
+    let mut jobs = Vec::new();
+    for p in paths {
+        let root = if p.is_dir() {
+            p.clone()
+        } else {
+            p.parent()
+                .filter(|d| !d.as_os_str().is_empty())
+                .map_or_else(|| PathBuf::from("."), Path::to_path_buf)
+        };
+        let before = jobs.len();
+        collect(p, &mut jobs, &root).map_err(|e| format!("cannot read {}: {e}", p.display()))?;
+        if jobs.len() == before {
+            return Err(format!("{}: no `.deriv` file in it", p.display()));
+        }
+    }
+    Ok(jobs)
+}
+
+/// `f` on every item, two (or as many as there are cores) at a time; results in order.
+pub fn parallel<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
+    let results: Mutex<Vec<Option<R>>> = Mutex::new((0..items.len()).map(|_| None).collect());
+    let next = Mutex::new(0usize);
+    let workers = std::thread::available_parallelism()
+        .map_or(2, |n| n.get())
+        .min(items.len().max(1));
+    std::thread::scope(|s| {
+        for _ in 0..workers {
+            s.spawn(|| loop {
+                let i = {
+                    let mut n = next.lock().unwrap_or_else(|e| e.into_inner());
+                    let i = *n;
+                    *n += 1;
+                    i
+                };
+                let Some(item) = items.get(i) else {
+                    break;
+                };
+                let r = f(item);
+                let mut all = results.lock().unwrap_or_else(|e| e.into_inner());
+                if let Some(slot) = all.get_mut(i) {
+                    *slot = Some(r);
+                }
+            });
+        }
+    });
+    results
+        .into_inner()
+        .unwrap_or_else(|e| e.into_inner())
+        .into_iter()
+        .flatten()
+        .collect()
+}
+
 /// Checks files and folders (folders: every `.deriv` file inside, recursively), two at a
 /// time; the reports come back in a stable order (sorted by path within each argument).
 /// A file's imports must stay inside the folder given (or the file's own folder).

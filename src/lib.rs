@@ -27,6 +27,7 @@ pub mod guard;
 pub mod interval;
 pub mod lint;
 pub mod lower;
+pub mod mark;
 pub mod normal;
 pub mod render;
 pub mod solve;

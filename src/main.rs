@@ -36,6 +36,17 @@ pub enum Format {
     Github,
 }
 
+/// Output format of `mark`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum MarkFormat {
+    /// Lines per submission.
+    Human,
+    /// The gradebook CSV.
+    Csv,
+    /// One JSON object per submission.
+    Json,
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Check derivation files and folders (default: derivations/).
@@ -106,6 +117,27 @@ enum Command {
         #[arg(long, value_enum, default_value_t = Format::Human)]
         format: Format,
     },
+    /// Mark students' derivation files against a reference.
+    Mark {
+        /// The reference derivation.
+        #[arg(long)]
+        reference: std::path::PathBuf,
+        /// Submissions: files or folders.
+        #[arg(required = true)]
+        submissions: Vec<std::path::PathBuf>,
+        /// Print the class summary table.
+        #[arg(long)]
+        summary: bool,
+        /// Write one Markdown feedback file per submission into this folder.
+        #[arg(long)]
+        feedback: Option<std::path::PathBuf>,
+        /// Show the reference's working in the feedback files.
+        #[arg(long)]
+        reveal: bool,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = MarkFormat::Human)]
+        format: MarkFormat,
+    },
     /// Write a derivation as a Markdown worked solution.
     Markdown {
         /// The derivation file.
@@ -165,6 +197,20 @@ fn main() -> ExitCode {
         Command::Latex { file, o } => cli::document(&file, o.as_deref(), true, &opts),
         Command::Markdown { file, o } => cli::document(&file, o.as_deref(), false, &opts),
         Command::Lint { docs, format } => cli::lint(&docs, format, timeout, &opts),
+        Command::Mark {
+            reference,
+            submissions,
+            summary,
+            feedback,
+            reveal,
+            format,
+        } => cli::mark(
+            (&reference, &submissions),
+            (summary, feedback.as_deref(), reveal),
+            format,
+            timeout,
+            &opts,
+        ),
     };
     ExitCode::from(code)
 }

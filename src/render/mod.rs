@@ -12,6 +12,7 @@ pub mod human;
 pub mod json;
 pub mod latex;
 pub mod lint;
+pub mod mark;
 pub mod markdown;
 mod solution;
 mod text;

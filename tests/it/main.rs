@@ -9,6 +9,7 @@ mod guard;
 mod hostile;
 mod library;
 mod lint;
+mod mark;
 mod normal;
 mod props;
 mod readme;

@@ -1,0 +1,81 @@
+//! `rigor mark` on a small class (`tests/mark/`): the summary in every format and the
+//! feedback files are snapshots; the exit status says whether the class was marked.
+
+use std::path::Path;
+use std::process::Command;
+
+fn mark(args: &[&str]) -> (String, String, i32) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let out = Command::new(env!("CARGO_BIN_EXE_rigor"))
+        .arg("mark")
+        .args(args)
+        .current_dir(root)
+        .output()
+        .expect("rigor runs");
+    (
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+        out.status.code().unwrap_or(-1),
+    )
+}
+
+const REF: &str = "tests/mark/reference.deriv";
+const CLASS: &str = "tests/mark/class";
+
+#[test]
+fn the_class_is_marked_in_every_format() {
+    for format in ["human", "csv", "json"] {
+        let (out, err, code) = mark(&["--reference", REF, CLASS, "--format", format]);
+        assert_eq!(code, 0, "{err}");
+        insta::assert_snapshot!(format!("mark_{format}"), out);
+    }
+    let (out, _, code) = mark(&["--reference", REF, CLASS, "--summary"]);
+    assert_eq!(code, 0);
+    insta::assert_snapshot!("mark_summary", out);
+}
+
+#[test]
+fn the_gradebook_has_the_documented_header_and_one_row_per_submission() {
+    let (out, _, _) = mark(&["--reference", REF, CLASS, "--format", "csv"]);
+    let mut lines = out.lines();
+    assert_eq!(
+        lines.next(),
+        Some("file,steps_verified,steps_total,first_failure_line,first_failure_kind,results_correct,results_total")
+    );
+    let rows: Vec<&str> = lines.collect();
+    assert_eq!(rows.len(), 8);
+    assert!(rows[0].ends_with(",2,2,,,2,2"), "{}", rows[0]);
+    assert!(rows[2].contains(",10,sign,1,2"), "{}", rows[2]);
+    assert!(rows[3].contains(",9,factor,0,2"), "{}", rows[3]);
+    assert!(rows[4].contains(",8,missing_fact,1,2"), "{}", rows[4]);
+}
+
+#[test]
+fn feedback_names_the_first_mistake_without_revealing_the_reference() {
+    let dir = std::env::temp_dir().join(format!("rigor-feedback-{}", std::process::id()));
+    let d = dir.display().to_string();
+    let (_, err, code) = mark(&["--reference", REF, CLASS, "--feedback", &d]);
+    assert_eq!(code, 0, "{err}");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .expect("feedback folder")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .collect();
+    files.sort();
+    assert_eq!(files.len(), 8);
+    for k in [0usize, 2, 4] {
+        let text = std::fs::read_to_string(&files[k]).expect("feedback");
+        assert!(
+            !text.contains("-2/3 g sin(beta) by"),
+            "the reference is not revealed:\n{text}"
+        );
+        insta::assert_snapshot!(format!("feedback_{k}"), text);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_reference_that_does_not_verify_is_refused() {
+    let (_, err, code) = mark(&["--reference", "tests/mark/class/04_factor.deriv", CLASS]);
+    assert_eq!(code, 2);
+    assert!(err.contains("does not verify"), "{err}");
+}
