@@ -140,17 +140,46 @@ struct Builder<'a> {
     ctx: Ctx,
     shown: Vec<bool>,
     blocks: Vec<Block>,
+    /// Equation numbers of the labelled givens, constraints and claims, in document
+    /// order: labels never appear in the output, their numbers do.
+    numbers: std::collections::HashMap<String, usize>,
+    /// The unknowns, for the "Find" line.
+    find: Vec<String>,
 }
 
 impl<'a> Builder<'a> {
     fn new(report: &'a FileReport, ast: &'a File) -> Builder<'a> {
+        let mut numbers = std::collections::HashMap::new();
+        for item in &ast.items {
+            if let Item::Stmt(st) = item {
+                let label = match &st.kind {
+                    StmtKind::Given { label, .. }
+                    | StmtKind::Constraint { label, .. }
+                    | StmtKind::Claim { label, .. } => label.as_ref(),
+                    _ => None,
+                };
+                if let Some(l) = label {
+                    let next = numbers.len() + 1;
+                    numbers.entry(l.name.clone()).or_insert(next);
+                }
+            }
+        }
         Builder {
             report,
             ast,
             ctx: Ctx::from_file(ast),
             shown: vec![false; report.diagnostics.len()],
             blocks: Vec::new(),
+            numbers,
+            find: Vec::new(),
         }
+    }
+
+    /// A label as the output shows it: its equation number, or (imported) its name.
+    fn number(&self, label: &str) -> String {
+        self.numbers
+            .get(label)
+            .map_or_else(|| label.to_string(), |n| n.to_string())
     }
 
     fn run(mut self, file_name: String) -> Solution {
@@ -190,6 +219,9 @@ impl<'a> Builder<'a> {
                     }
                 }
                 Item::Stmt(stmt) if is_declaration(&stmt.kind) => {
+                    if let StmtKind::Unknowns { names } = &stmt.kind {
+                        self.find.extend(names.iter().map(|n| symbol(&n.name)));
+                    }
                     self.declaration(&stmt.kind, &mut decls);
                     decl_problems.extend(self.attach(stmt.span, false));
                 }
@@ -200,6 +232,8 @@ impl<'a> Builder<'a> {
             self.blocks.push(Block::Paragraph(prose));
         }
         self.finish_decls(&mut decls, &mut decl_problems);
+        self.results();
+        self.checked_line();
         let rest: Vec<Problem> = self
             .report
             .diagnostics
@@ -219,7 +253,94 @@ impl<'a> Builder<'a> {
         }
     }
 
-    /// Ends a run of declarations: the "Given quantities" sentence and its problems.
+    /// The closing "Results" block: the claims `result [..]` names (each `first = last`
+    /// of its chain), boxed.
+    fn results(&mut self) {
+        let mut named: Vec<&str> = Vec::new();
+        for item in &self.ast.items {
+            if let Item::Stmt(st) = item {
+                if let StmtKind::Result { labels } = &st.kind {
+                    named.extend(labels.iter().map(|l| l.name.as_str()));
+                }
+            }
+        }
+        let mut shown = Vec::new();
+        for item in &self.ast.items {
+            let Item::Stmt(st) = item else { continue };
+            let StmtKind::Claim {
+                label: Some(l),
+                chain,
+                ..
+            } = &st.kind
+            else {
+                continue;
+            };
+            if !named.contains(&l.name.as_str()) {
+                continue;
+            }
+            let last = chain.links.last().map_or(&chain.first, |k| &k.rhs);
+            let op = chain
+                .links
+                .last()
+                .map_or(crate::syntax::ast::RelOp::Eq, |k| k.op);
+            shown.push(Block::Display {
+                prefix: None,
+                math: format!(
+                    "\\boxed{{{} {} {}}}",
+                    expr_latex_in(&chain.first, &self.ctx),
+                    rel_latex(op),
+                    expr_latex_in(last, &self.ctx)
+                ),
+                note: None,
+                tag: Some(self.number(&l.name)),
+            });
+        }
+        if !shown.is_empty() {
+            self.blocks.push(Block::Heading(2, "Results".into()));
+            self.blocks.extend(shown);
+        }
+    }
+
+    /// What was checked, in one closing line.
+    fn checked_line(&mut self) {
+        let (verified, total) = (self.report.verified(), self.report.links());
+        if total == 0 {
+            return;
+        }
+        let mut conditions: Vec<String> = Vec::new();
+        for c in &self.report.claims {
+            for l in &c.links {
+                if let Status::Verified {
+                    side_conditions, ..
+                } = &l.status
+                {
+                    for sc in side_conditions {
+                        if !conditions.contains(sc) {
+                            conditions.push(sc.clone());
+                        }
+                    }
+                }
+            }
+        }
+        let mut p = vec![Inline::Text(format!(
+            "rigor verified {verified} of {total} steps"
+        ))];
+        let opts = crate::syntax::ParseOptions::default();
+        for (k, sc) in conditions.iter().enumerate() {
+            p.push(Inline::Text(
+                if k == 0 { "; side conditions: " } else { ", " }.into(),
+            ));
+            p.push(match crate::syntax::parse_chain(sc, &opts) {
+                Ok(ch) => Inline::Math(chain_latex_in(&ch, &self.ctx)),
+                Err(_) => Inline::Code(sc.clone()),
+            });
+        }
+        p.push(Inline::Text(".".into()));
+        self.blocks.push(Block::Paragraph(p));
+    }
+
+    /// Ends a run of declarations: the "Given quantities" and "Find" sentences and their
+    /// problems.
     fn finish_decls(&mut self, decls: &mut Vec<Inline>, problems: &mut Vec<Problem>) {
         if !decls.is_empty() {
             let mut p = vec![
@@ -229,6 +350,15 @@ impl<'a> Builder<'a> {
             p.append(decls);
             p.push(Inline::Text(".".into()));
             self.blocks.push(Block::Paragraph(p));
+        }
+        if !self.find.is_empty() {
+            let find = std::mem::take(&mut self.find);
+            self.blocks.push(Block::Paragraph(vec![
+                Inline::Strong("Find:".into()),
+                Inline::Text(" ".into()),
+                Inline::Math(find.join(", ")),
+                Inline::Text(".".into()),
+            ]));
         }
         if !problems.is_empty() {
             self.blocks.push(Block::Problems(std::mem::take(problems)));
@@ -286,9 +416,11 @@ impl<'a> Builder<'a> {
                 out.push(Inline::Text(": ".into()));
                 out.push(Inline::Math(names(ns)));
             }
-            StmtKind::Unknowns { names: ns } => {
-                out.push(Inline::Text("unknowns: ".into()));
-                out.push(Inline::Math(names(ns)));
+            StmtKind::Unknowns { .. } => {
+                // Unknowns are not given: they go in the "Find" line.
+                if matches!(out.last(), Some(Inline::Text(t)) if t == "; ") {
+                    out.pop();
+                }
             }
             StmtKind::Units { decls } => {
                 out.push(Inline::Text("units: ".into()));
@@ -365,7 +497,7 @@ impl<'a> Builder<'a> {
                     prefix: None,
                     math: chain_latex_in(chain, ctx),
                     note: Some(note.into()),
-                    tag: label.as_ref().map(|l| l.name.clone()),
+                    tag: label.as_ref().map(|l| self.number(&l.name)),
                 });
             }
             StmtKind::Claim {
@@ -376,7 +508,7 @@ impl<'a> Builder<'a> {
                 let rows = self.claim_rows(stmt, chain, where_);
                 self.blocks.push(Block::Claim {
                     rows,
-                    tag: label.as_ref().map(|l| l.name.clone()),
+                    tag: label.as_ref().map(|l| self.number(&l.name)),
                 });
             }
             StmtKind::Use {
@@ -422,7 +554,9 @@ impl<'a> Builder<'a> {
                 };
                 let by = link.by.as_ref().map(|(by, _)| match by {
                     By::Text(t) => Just::Text(t.clone()),
-                    By::Labels(ls) => Just::Labels(ls.iter().map(|l| l.name.clone()).collect()),
+                    By::Labels(ls) => {
+                        Just::Labels(ls.iter().map(|l| self.number(&l.name)).collect())
+                    }
                 });
                 let where_ = (k + 1 == n && !where_.is_empty())
                     .then(|| format!("\\text{{where }} {}", assignments(where_, &self.ctx)));

@@ -408,13 +408,16 @@ fn failures_are_marked_in_documents() {
     );
     let tex = latex::document(&r);
     assert!(tex.contains("\\title{Small}"), "{tex}");
-    assert!(tex.contains("\\tag{Fx}"), "{tex}");
-    assert!(tex.contains("\\tag{two}"), "{tex}");
+    // Labels become equation numbers in document order; labels never show.
+    assert!(tex.contains("\\tag{1}"), "{tex}");
+    assert!(tex.contains("\\tag{2}"), "{tex}");
+    assert!(!tex.contains("Fx") && !tex.contains("{two}"), "{tex}");
+    assert!(tex.contains("rigor verified 2 of 3 steps."), "{tex}");
     assert!(
         tex.contains("&= 2 m\\,g \\quad\\text{(by doubling it)} \\quad\\textbf{[not verified]}"),
         "{tex}"
     );
-    assert!(tex.contains("\\text{by (Fx)}"), "{tex}");
+    assert!(tex.contains("\\text{by (1)}"), "{tex}");
     assert!(
         tex.contains(
             "\\textbf{Not verified (line 6):} the two sides differ by a factor \\{2\\} \\& 100\\%"
@@ -429,10 +432,11 @@ fn failures_are_marked_in_documents() {
         "{md}"
     );
     assert!(
-        md.contains("$$\n\\begin{aligned}\nF &= m\\,g \\quad\\text{by (Fx)} \\\\\n"),
+        md.contains("$$\n\\begin{aligned}\nF &= m\\,g \\quad\\text{by (1)} \\\\\n"),
         "{md}"
     );
-    assert!(md.contains("\\end{aligned} \\tag{two}\n$$\n"), "{md}");
+    assert!(md.contains("\\end{aligned} \\tag{2}\n$$\n"), "{md}");
+    assert!(md.contains("**Find:** $F$."), "{md}");
 }
 
 #[test]
