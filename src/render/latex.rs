@@ -31,7 +31,7 @@ pub fn document(report: &FileReport) -> String {
     let mut out = String::from(PREAMBLE);
     out.push_str(&format!(
         "\\title{{{}}}\n\\author{{}}\n\\date{{}}\n\\begin{{document}}\n\\maketitle\n",
-        text(&solution.title)
+        inlines(&super::solution::rich(&solution.title))
     ));
     for block in &solution.blocks {
         out.push('\n');
@@ -44,9 +44,25 @@ pub fn document(report: &FileReport) -> String {
 /// Escaped text, with `<`, `>` and `|` spelled out for the OT1 encoding.
 fn text(s: &str) -> String {
     latex_text(s)
+        // Two apostrophes would be a closing quote: keep them apart (`theta''`).
+        .replace("''", "'{}'")
         .replace('<', "\\textless{}")
         .replace('>', "\\textgreater{}")
         .replace('|', "\\textbar{}")
+}
+
+/// Inline parts in running LaTeX text.
+fn inlines(parts: &[Inline]) -> String {
+    let mut out = String::new();
+    for part in parts {
+        match part {
+            Inline::Text(t) => out.push_str(&text(t)),
+            Inline::Strong(t) => out.push_str(&format!("\\textbf{{{}}}", text(t))),
+            Inline::Code(t) => out.push_str(&format!("\\texttt{{{}}}", text(t))),
+            Inline::Math(m) => out.push_str(&format!("${m}$")),
+        }
+    }
+    out
 }
 
 fn block_latex(block: &Block, out: &mut String) {
@@ -57,7 +73,10 @@ fn block_latex(block: &Block, out: &mut String) {
                 3 => "subsection",
                 _ => "subsubsection",
             };
-            out.push_str(&format!("\\{cmd}*{{{}}}\n", text(t)));
+            out.push_str(&format!(
+                "\\{cmd}*{{{}}}\n",
+                inlines(&super::solution::rich(t))
+            ));
         }
         Block::Paragraph(parts) => {
             for part in parts {

@@ -13,7 +13,7 @@ use crate::check::report::FileReport;
 /// each diagnostic follows as `> **not verified** (line N): message`.
 pub fn document(report: &FileReport) -> String {
     let solution = build(report);
-    let mut out = format!("# {}\n", markdown_text(&solution.title));
+    let mut out = format!("# {}\n", inlines(&super::solution::rich(&solution.title)));
     for block in &solution.blocks {
         out.push('\n');
         block_markdown(block, &mut out);
@@ -21,11 +21,30 @@ pub fn document(report: &FileReport) -> String {
     out
 }
 
+/// Inline parts in a Markdown line.
+fn inlines(parts: &[Inline]) -> String {
+    let mut line = String::new();
+    for part in parts {
+        match part {
+            Inline::Text(t) if line.is_empty() => line.push_str(&markdown_text(t)),
+            Inline::Text(t) => line.push_str(&markdown_inline(t)),
+            Inline::Strong(t) => line.push_str(&format!("**{}**", markdown_inline(t))),
+            Inline::Code(t) => line.push_str(&code(t)),
+            Inline::Math(m) => line.push_str(&format!("${m}$")),
+        }
+    }
+    line
+}
+
 fn block_markdown(block: &Block, out: &mut String) {
     match block {
         Block::Heading(level, t) => {
             let level = (*level).clamp(2, 6);
-            out.push_str(&format!("{} {}\n", "#".repeat(level), markdown_text(t)));
+            out.push_str(&format!(
+                "{} {}\n",
+                "#".repeat(level),
+                inlines(&super::solution::rich(t))
+            ));
         }
         Block::Paragraph(parts) => {
             let mut line = String::new();

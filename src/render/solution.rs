@@ -104,6 +104,53 @@ pub(crate) struct Solution {
     pub blocks: Vec<Block>,
 }
 
+/// Raw text with `$…$` math (rigor's syntax) as inlines: math typeset, the rest text;
+/// `\$` is a dollar sign, and math that does not parse stays text.
+pub(crate) fn rich(t: &str) -> Vec<Inline> {
+    let mut out = Vec::new();
+    let mut text = String::new();
+    let mut rest = t;
+    let opts = crate::syntax::ParseOptions::default();
+    while let Some(i) = rest.find('$') {
+        if rest[..i].ends_with('\\') {
+            text.push_str(&rest[..i - 1]);
+            text.push('$');
+            rest = &rest[i + 1..];
+            continue;
+        }
+        let after = &rest[i + 1..];
+        let Some(j) = after.find('$') else {
+            break;
+        };
+        let math = &after[..j];
+        let typeset = crate::syntax::parse_chain(math, &opts)
+            .map(|c| chain_latex_in(&c, &Ctx::default()))
+            .or_else(|_| {
+                crate::syntax::parse_expr(math, &opts).map(|e| expr_latex_in(&e, &Ctx::default()))
+            });
+        text.push_str(&rest[..i]);
+        match typeset {
+            Ok(m) => {
+                if !text.is_empty() {
+                    out.push(Inline::Text(std::mem::take(&mut text)));
+                }
+                out.push(Inline::Math(m));
+            }
+            Err(_) => {
+                text.push('$');
+                text.push_str(math);
+                text.push('$');
+            }
+        }
+        rest = &after[j + 1..];
+    }
+    text.push_str(rest);
+    if !text.is_empty() {
+        out.push(Inline::Text(text));
+    }
+    out
+}
+
 /// The worked solution of a report.
 pub(crate) fn build(report: &FileReport) -> Solution {
     let file_name = std::path::Path::new(&report.path)

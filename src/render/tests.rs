@@ -617,3 +617,29 @@ fn checked_documents_compile() {
         let _ = std::fs::write(Path::new(&dir).join("all.txt"), &all);
     }
 }
+
+#[test]
+fn math_in_titles_and_headings_is_typeset() {
+    let src = "# Rolling with $I_G = m R^2$\nsymbols m R > 0\n## The case $R = 2$, theta'' in words, \\$5\nclaim [a] m R^2 = R^2 m\n";
+    let r = crate::check::check_source(
+        "t.deriv",
+        src,
+        &crate::check::Options::default(),
+        &crate::check::MemoryResolver::new(),
+    );
+    let tex = latex::document(&r);
+    assert!(
+        tex.contains("\\title{Rolling with $I_{G} = m\\,R^{2}$}"),
+        "{tex}"
+    );
+    assert!(
+        tex.contains("\\section*{The case $R = 2$, theta'{}' in words, \\$5}"),
+        "{tex}"
+    );
+    compile("titles", &tex);
+    let md = markdown::document(&r);
+    assert!(
+        md.starts_with("# Rolling with $I_{G} = m\\,R^{2}$\n"),
+        "{md}"
+    );
+}
