@@ -65,6 +65,8 @@ impl Checker<'_, '_> {
         };
         let (mut prev, mut prev_divs) = (first, divs);
         let mut new_facts: Vec<NewFact> = Vec::new();
+        // The last link, if it failed: its index, left side, diagnostic and span.
+        let mut odd: Option<(usize, Rat, usize, Span)> = None;
         for (i, link) in chain.links.iter().enumerate() {
             let span = if i == 0 {
                 chain.first.span.to(link.span)
@@ -116,14 +118,13 @@ impl Checker<'_, '_> {
             let units = dims
                 .as_ref()
                 .and_then(|d| Self::link_units(d.get(i)?, d.get(i + 1)?, span));
+            let before = self.report.diagnostics.len();
             let status = match units {
                 Some(d) => Err(d),
                 None => self.check_link(&input),
             }
-            .unwrap_or_else(|d| {
-                self.report.diagnostics.push(d);
-                Status::Failed
-            });
+            .unwrap_or_else(|d| self.failed_link(d, link.by.as_ref().map(|b| &b.0), span));
+            let status = self.odd_link(&mut odd, (i, link, &prev, &rhs), before, status);
             // With `where`, a claim is a special case and adds nothing general.
             if status.is_verified() && link.op == RelOp::Eq && subs.is_empty() {
                 if let Ok(v) = prev.sub(&rhs) {
@@ -149,6 +150,110 @@ impl Checker<'_, '_> {
         }
         self.add_claim_facts(&label, span, new_facts, claim.verified());
         self.report.claims.push(claim);
+    }
+
+    /// A link that did not hold: its diagnostic, unless it cites (`by [..]`) a step
+    /// that did not hold either — then the mistake was reported there, and this link
+    /// is not checked (a note says what it depends on).
+    fn failed_link(&mut self, d: crate::diag::Diagnostic, by: Option<&By>, span: Span) -> Status {
+        let cited: Vec<String> = match by {
+            Some(By::Labels(ls)) => ls
+                .iter()
+                .filter_map(|l| {
+                    let line = self.failed_labels.get(&l.name)?;
+                    Some(format!("[{}] (line {line})", l.name))
+                })
+                .collect(),
+            // Undecided on all the facts in scope, some of which failed earlier: the
+            // missing fact is most likely one of those.
+            None if d.code == "E0302" => {
+                let first = self
+                    .failed_labels
+                    .iter()
+                    .min_by_key(|(l, line)| (**line, *l));
+                let others = self.failed_labels.len().saturating_sub(1);
+                first
+                    .map(|(l, line)| match others {
+                        0 => format!("[{l}] (line {line})"),
+                        n => format!(
+                            "[{l}] (line {line}) and {n} later step{}",
+                            if n == 1 { "" } else { "s" }
+                        ),
+                    })
+                    .into_iter()
+                    .collect()
+            }
+            _ => Vec::new(),
+        };
+        if cited.is_empty() || d.code.starts_with("E04") {
+            self.report.diagnostics.push(d);
+            return Status::Failed;
+        }
+        let msg = if by.is_some() {
+            format!(
+                "not checked: it cites {}, which did not check",
+                cited.join(", ")
+            )
+        } else {
+            format!(
+                "not checked: it needs the facts in scope, but {} did not check",
+                cited.join(", ")
+            )
+        };
+        self.not_checked_note(msg, span);
+        Status::NotChecked
+    }
+
+    /// Tracks the last failed link of a chain (`odd`): when this link (`i`) failed too
+    /// and the line before the last equals the line after this one, the last is the
+    /// odd one out and this link is not checked. `before` is the number of diagnostics
+    /// before this link was checked.
+    fn odd_link(
+        &mut self,
+        odd: &mut Option<(usize, Rat, usize, Span)>,
+        (i, link, prev, rhs): (usize, &crate::syntax::ast::Link, &Rat, &Rat),
+        before: usize,
+        status: Status,
+    ) -> Status {
+        if !matches!(status, Status::Failed) || self.report.diagnostics.len() != before + 1 {
+            *odd = None;
+            return status;
+        }
+        let equal = |(k, lhs, _, _): &(usize, Rat, usize, Span)| {
+            *k + 1 == i && link.op == RelOp::Eq && lhs.sub(rhs).is_ok_and(|d| d.is_zero())
+        };
+        if let Some((_, _, di, at)) = odd.take_if(|o| equal(o)) {
+            self.report.diagnostics.truncate(before);
+            Self::odd_one_out(&mut self.report.diagnostics[di], at);
+            return Status::NotChecked;
+        }
+        *odd = (link.op == RelOp::Eq).then(|| (i, prev.clone(), before, link.span));
+        status
+    }
+
+    /// Links k and k + 1 of a chain both failed, but the line before k equals the line
+    /// after k + 1: line k is the odd one out, and its error says so (the next link's
+    /// error is dropped — one mistake, one error).
+    fn odd_one_out(d: &mut crate::diag::Diagnostic, line: Span) {
+        if let Some((span, _)) = &mut d.primary {
+            *span = line;
+        }
+        d.message = "this line does not follow from the one before, and the next line does \
+                     not follow from it; the chain holds without it"
+            .into();
+        d.notes.insert(
+            0,
+            "the lines before and after it are equal: correct this line, or remove it".into(),
+        );
+    }
+
+    /// The note (`msg`) of a link not checked because what it cites did not hold.
+    fn not_checked_note(&mut self, msg: String, span: Span) {
+        let mut d = crate::diag::Diagnostic::error("N0205", msg, span, "not checked");
+        d.severity = crate::diag::Severity::Note;
+        self.report
+            .diagnostics
+            .push(d.note("fix the step it cites first; this one is checked again then"));
     }
 
     /// The conditions a verified step's fact carries: its own, the elimination's
@@ -186,6 +291,9 @@ impl Checker<'_, '_> {
         if let Some(l) = label {
             if verified && !new_facts.is_empty() {
                 self.exports.claims.insert(l.clone(), new_facts);
+            } else if !verified {
+                let line = self.line(span);
+                self.failed_labels.insert(l.clone(), line);
             }
         }
     }
@@ -271,6 +379,9 @@ impl Checker<'_, '_> {
     }
 
     fn push_error_claim(&mut self, mut claim: ClaimReport, chain: &Chain) {
+        if let Some(l) = &claim.label {
+            self.failed_labels.insert(l.clone(), claim.line);
+        }
         let status = if self.timed_out {
             Status::Undecided
         } else {
@@ -316,24 +427,50 @@ impl Checker<'_, '_> {
     }
 
     /// Like [`Checker::facts_in`], reporting every label that names no fact.
-    pub(super) fn facts_for(&mut self, by: Option<&By>) -> Result<Vec<Known>, ()> {
+    ///
+    /// `Err(true)` when every such label names a given or claim that did not hold:
+    /// the link is not checked, and a note (not an error) says what it depends on —
+    /// one mistake is reported once, where it was made.
+    pub(super) fn facts_for(&mut self, by: Option<&By>, span: Span) -> Result<Vec<Known>, bool> {
         if let Ok(v) = self.facts_in(by) {
             return Ok(v);
         }
         let Some(By::Labels(ls)) = by else {
-            return Err(());
+            return Err(false);
         };
-        for l in ls {
-            if self
-                .facts
+        let missing: Vec<&crate::syntax::ast::Label> = ls
+            .iter()
+            .filter(|l| {
+                !self
+                    .facts
+                    .iter()
+                    .any(|k| k.label.as_deref() == Some(l.name.as_str()))
+            })
+            .collect();
+        if missing
+            .iter()
+            .all(|l| self.failed_labels.contains_key(&l.name))
+        {
+            let what: Vec<String> = missing
                 .iter()
-                .any(|k| k.label.as_deref() == Some(l.name.as_str()))
-            {
+                .map(|l| format!("[{}] (line {})", l.name, self.failed_labels[&l.name]))
+                .collect();
+            self.not_checked_note(
+                format!(
+                    "not checked: it cites {}, which did not check",
+                    what.join(", ")
+                ),
+                span,
+            );
+            return Err(true);
+        }
+        for l in missing {
+            if self.failed_labels.contains_key(&l.name) {
                 continue;
             }
             let known: Vec<String> = self.labels.keys().cloned().collect();
             let hint = if self.labels.contains_key(&l.name) {
-                "that label names no equation that holds (a failed claim, or an inequality)"
+                "that label names an inequality or a statement with no equation; `by` cites equations"
                     .to_string()
             } else if known.is_empty() {
                 "no labelled facts precede this line".into()
@@ -354,6 +491,6 @@ impl Checker<'_, '_> {
                 &hint,
             );
         }
-        Err(())
+        Err(false)
     }
 }

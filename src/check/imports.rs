@@ -30,7 +30,7 @@ impl Checker<'_, '_> {
             Ok(e) => e,
             Err(m) => {
                 self.error("E0206", m, path_span, "");
-                return;
+                return self.import_failed(labels);
             }
         };
         let from = From {
@@ -38,7 +38,7 @@ impl Checker<'_, '_> {
             exports: &exports,
         };
         let Some(subs) = self.with_values(with, &from) else {
-            return;
+            return self.import_failed(labels);
         };
         for l in labels {
             let Some(eqs) = exports.claims.get(&l.name) else {
@@ -47,6 +47,7 @@ impl Checker<'_, '_> {
                     None => format!("\"{path}\" has no verified equation [{}]", l.name),
                 };
                 self.error("E0206", why, l.span, "not found, or not verified there");
+                self.import_failed(std::slice::from_ref(l));
                 continue;
             };
             let label = self.new_label(&Some(l.clone()));
@@ -63,6 +64,15 @@ impl Checker<'_, '_> {
                     divisors,
                 });
             }
+        }
+    }
+
+    /// Labels a failed `use` did not bring in (the error is reported): a step citing
+    /// one is not checked, rather than a second error.
+    fn import_failed(&mut self, labels: &[Label]) {
+        for l in labels {
+            let line = self.line(l.span);
+            self.failed_labels.insert(l.name.clone(), line);
         }
     }
 

@@ -75,6 +75,9 @@ pub enum Status {
     Undecided,
     /// Not checked because the statement could not be read (an input error).
     Error,
+    /// Not checked because it cites (`by [..]`) a fact that did not hold; a note
+    /// says which. The failure is reported once, where it happened.
+    NotChecked,
 }
 
 impl Status {
@@ -156,12 +159,26 @@ impl FileReport {
             .count()
     }
 
-    /// Number of links that failed or stayed undecided.
+    /// Number of links shown false.
     pub fn failed(&self) -> usize {
+        self.count(|s| matches!(s, Status::Failed))
+    }
+
+    /// Number of links neither verified nor refuted.
+    pub fn undecided(&self) -> usize {
+        self.count(|s| matches!(s, Status::Undecided))
+    }
+
+    /// Number of links not checked because they cite a fact that did not hold.
+    pub fn not_checked(&self) -> usize {
+        self.count(|s| matches!(s, Status::NotChecked))
+    }
+
+    fn count(&self, f: impl Fn(&Status) -> bool) -> usize {
         self.claims
             .iter()
             .flat_map(|c| &c.links)
-            .filter(|l| matches!(l.status, Status::Failed | Status::Undecided))
+            .filter(|l| f(&l.status))
             .count()
     }
 

@@ -141,8 +141,12 @@ impl Checker<'_, '_> {
             diff = Rat::zero();
         }
         // `by [..]` must name facts before this line, even where none is needed.
-        if input.restricted() && self.facts_for(input.by()).is_err() {
-            return Ok(Status::Error);
+        if input.restricted() {
+            match self.facts_for(input.by(), span) {
+                Ok(_) => {}
+                Err(true) => return Ok(Status::NotChecked),
+                Err(false) => return Ok(Status::Error),
+            }
         }
         if diff.is_zero() && input.divisors.is_empty() && input.link.op == RelOp::Eq {
             // An identity with nothing to assume: no facts needed.

@@ -38,6 +38,9 @@ pub struct Checker<'l, 'o> {
     pub(super) env: Env,
     pub(super) facts: Vec<Known>,
     pub(super) labels: HashMap<String, Span>,
+    /// Labels of givens and claims that did not hold (or could not be read), with
+    /// their line: a later `by [..]` citing one is not checked rather than an error.
+    pub(super) failed_labels: HashMap<String, usize>,
     pub(super) exports: Exports,
     body_coords: HashMap<String, Vec<String>>,
     /// Set when lowering ran out of time (the link is undecided).
@@ -68,6 +71,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             env: Env::default(),
             facts: Vec::new(),
             labels: HashMap::new(),
+            failed_labels: HashMap::new(),
             exports: Exports::default(),
             body_coords: HashMap::new(),
             timed_out: false,
@@ -390,21 +394,38 @@ impl<'l, 'o> Checker<'l, 'o> {
     }
 
     fn given(&mut self, label: Option<String>, chain: &Chain, span: Span, constraint: bool) {
+        if !self.given_facts(&label, chain, span, constraint) {
+            if let Some(l) = label {
+                let line = self.line(span);
+                self.failed_labels.insert(l, line);
+            }
+        }
+    }
+
+    /// The facts of a given or constraint; `false` when it could not be read (the
+    /// error is reported).
+    fn given_facts(
+        &mut self,
+        label: &Option<String>,
+        chain: &Chain,
+        span: Span,
+        constraint: bool,
+    ) -> bool {
         let mut divs = Vec::new();
         let Some(mut prev) = self.lower(&chain.first, &mut divs) else {
-            return;
+            return false;
         };
-        let name = self.fact_name(&label, span);
+        let name = self.fact_name(label, span);
         for link in &chain.links {
             let Some(rhs) = self.lower(&link.rhs, &mut divs) else {
-                return;
+                return false;
             };
             if link.op == RelOp::Eq {
                 let value = match prev.sub(&rhs) {
                     Ok(v) => v,
                     Err(e) => {
                         self.error("E0101", e.to_string(), link.span, "");
-                        return;
+                        return false;
                     }
                 };
                 if value.is_zero() {
@@ -459,6 +480,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             }
             prev = rhs;
         }
+        true
     }
 
     /// `symbols lo < x < hi`: symbols with the sign and the interval the bounds give.

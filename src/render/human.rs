@@ -51,24 +51,32 @@ pub fn report(r: &FileReport, verbose: bool) -> String {
     out
 }
 
-/// One line `files: N, claims: C, verified: V, failed: F, errors: E` (with a newline).
+/// One line `files: N, claims: C, links: L, verified: V, failed: F, undecided: U,
+/// errors: E` (with a newline), and `, not checked: K` after it when K > 0.
 ///
 /// - `files`: the reports given;
-/// - `claims`: the links checked — each link of a chain counts, so a claim
-///   `a = b = c` counts 2;
-/// - `verified`: links verified;
-/// - `failed`: links refuted or left undecided;
+/// - `claims`: the claims (a chain `a = b = c` is one claim of 2 links);
+/// - `links`: the links checked;
+/// - `verified`, `failed`, `undecided`: links verified, shown false, and neither;
 /// - `errors`: problems that are not a failed link: every error-severity diagnostic
 ///   whose primary span does not lie inside a claim with a failed or undecided link
 ///   (syntax errors, undeclared symbols, missing files, contradictory facts…), and
-///   one for each file with `input_error` that has no such diagnostic.
+///   one for each file with `input_error` that has no such diagnostic;
+/// - `not checked`: links that cite a step that did not hold (counted once there).
 pub fn summary(reports: &[FileReport]) -> String {
-    let claims: usize = reports.iter().map(FileReport::links).sum();
-    let verified: usize = reports.iter().map(FileReport::verified).sum();
-    let failed: usize = reports.iter().map(FileReport::failed).sum();
-    let errors: usize = reports.iter().map(errors).sum();
+    let sum = |f: fn(&FileReport) -> usize| -> usize { reports.iter().map(f).sum() };
+    let claims = sum(|r| r.claims.len());
+    let (links, verified) = (sum(FileReport::links), sum(FileReport::verified));
+    let (failed, undecided) = (sum(FileReport::failed), sum(FileReport::undecided));
+    let errors = sum(errors);
+    let not_checked = sum(FileReport::not_checked);
+    let tail = if not_checked > 0 {
+        format!(", not checked: {not_checked}")
+    } else {
+        String::new()
+    };
     format!(
-        "files: {}, claims: {claims}, verified: {verified}, failed: {failed}, errors: {errors}\n",
+        "files: {}, claims: {claims}, links: {links}, verified: {verified}, failed: {failed}, undecided: {undecided}, errors: {errors}{tail}\n",
         reports.len()
     )
 }

@@ -16,7 +16,8 @@ use serde_json::{json, Value};
 ///      "end_column", "label", "notes"}]}
 /// ```
 ///
-/// `status` is `verified`, `failed`, `undecided` or `error`; `justification` is
+/// `status` is `verified`, `failed`, `undecided`, `not_checked` (it cites a step that
+/// did not hold; a note says which) or `error`; `justification` is
 /// `{"kind": "identity"}`, `{"kind": "facts", "facts": [...]}`,
 /// `{"kind": "signs", "facts": [...]}`, `{"kind": "approx"}`, or `null` when not
 /// verified. `lhs`, `rhs`, positions and labels are `null` when unknown.
@@ -64,6 +65,7 @@ fn link(r: &FileReport, l: &LinkReport) -> Value {
         Status::Failed => ("failed", Value::Null, &[]),
         Status::Undecided => ("undecided", Value::Null, &[]),
         Status::Error => ("error", Value::Null, &[]),
+        Status::NotChecked => ("not_checked", Value::Null, &[]),
     };
     let mut obj = serde_json::Map::new();
     position(r, Some(l.span), &mut obj);

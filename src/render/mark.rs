@@ -173,6 +173,7 @@ pub fn feedback(r: &Row, reveal: Option<&str>) -> String {
                     Status::Failed => "does not follow",
                     Status::Undecided => "not decided",
                     Status::Error => "not read",
+                    Status::NotChecked => "not checked (it cites a step that does not follow)",
                 };
                 let line = crate::diag::line_col(&rep.source, l.span.start).0;
                 out.push_str(&format!("- line {line}: {v}\n"));

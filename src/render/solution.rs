@@ -596,7 +596,7 @@ impl<'a> Builder<'a> {
                     .or_else(|| self.report.link_status(link.span));
                 let flag = match status {
                     Some(Status::Failed | Status::Undecided) => Some("not verified"),
-                    Some(Status::Error) => Some("not checked"),
+                    Some(Status::Error | Status::NotChecked) => Some("not checked"),
                     _ => None,
                 };
                 let by = link.by.as_ref().map(|(by, _)| match by {

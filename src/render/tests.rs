@@ -298,11 +298,11 @@ fn summary_line() {
     };
     assert_eq!(
         human::summary(&[r, bad]),
-        "files: 2, claims: 3, verified: 1, failed: 2, errors: 1\n"
+        "files: 2, claims: 1, links: 3, verified: 1, failed: 1, undecided: 1, errors: 1\n"
     );
     assert_eq!(
         human::summary(&[]),
-        "files: 0, claims: 0, verified: 0, failed: 0, errors: 0\n"
+        "files: 0, claims: 0, links: 0, verified: 0, failed: 0, undecided: 0, errors: 0\n"
     );
 }
 

@@ -67,6 +67,7 @@ fn justification(s: &Status) -> String {
         Status::Failed => "FAILED".into(),
         Status::Undecided => "UNDECIDED".into(),
         Status::Error => "ERROR".into(),
+        Status::NotChecked => "NOT CHECKED".into(),
     }
 }
 
@@ -196,4 +197,58 @@ fn mixed_scales_in_one_sum_are_a_warning_not_a_failure() {
     assert!(r.ok());
     let warnings: Vec<&str> = r.diagnostics.iter().map(|d| d.code).collect();
     assert_eq!(warnings, ["W0401", "W0401"]);
+}
+
+/// The error-severity codes and the `N0205` notes of a fixture in `tests/check/fail/`.
+fn errors_and_notes(name: &str) -> (Vec<&'static str>, usize, FileReport) {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/check/fail")
+        .join(name);
+    let r = check_one(&path);
+    let errors = r
+        .diagnostics
+        .iter()
+        .filter(|d| d.severity == rigor::diag::Severity::Error)
+        .map(|d| d.code)
+        .collect();
+    let notes = r
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == "N0205" && d.severity == rigor::diag::Severity::Note)
+        .count();
+    (errors, notes, r)
+}
+
+#[test]
+fn one_mistake_is_one_error_and_what_cites_it_is_not_checked() {
+    // A failed claim cited by `by [..]`, and through it a second claim: notes, and no
+    // "unknown label" (which would be an input error, exit status 2).
+    let (errors, notes, r) = errors_and_notes("cascade_by_failed_claim.deriv");
+    assert_eq!(errors, ["E0301"], "{:?}", r.diagnostics);
+    assert_eq!((notes, r.not_checked(), r.failed()), (2, 2, 1));
+    assert!(!r.input_error);
+    // An undeclared symbol in a given: reported once; the claim citing it is not checked.
+    let (errors, notes, r) = errors_and_notes("cascade_given_undeclared.deriv");
+    assert_eq!(errors, ["E0201"], "{:?}", r.diagnostics);
+    assert_eq!((notes, r.not_checked()), (1, 1));
+    // A failed import: the claim citing the label it should have brought in is not a
+    // second error.
+    let (errors, notes, _) = errors_and_notes("kind_use_missing_file.deriv");
+    assert_eq!((errors, notes), (vec!["E0206"], 1));
+    // The odd line of a chain: one error, on that line (8), and the next link is not
+    // checked.
+    let (errors, _, r) = errors_and_notes("chain_odd_one_out.deriv");
+    assert_eq!(errors, ["E0301"]);
+    let d = &r.diagnostics[0];
+    assert!(
+        d.message.contains("the chain holds without it"),
+        "{}",
+        d.message
+    );
+    let line = d
+        .primary
+        .as_ref()
+        .map(|(s, _)| r.source[..s.start].lines().count());
+    assert_eq!(line, Some(8));
+    assert_eq!((r.failed(), r.not_checked()), (1, 1));
 }
