@@ -61,6 +61,15 @@ impl Diagnostic {
         self.notes.push(n.into());
         self
     }
+
+    /// Adds a note when `cond` holds.
+    pub fn note_if(self, cond: bool, n: impl Into<String>) -> Diagnostic {
+        if cond {
+            self.note(n)
+        } else {
+            self
+        }
+    }
 }
 
 /// 1-based line and column (in characters) of byte offset `at`.

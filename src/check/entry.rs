@@ -188,6 +188,8 @@ impl Loader<'_> {
 
 /// Checks one file's text with `loader` for its imports.
 fn check_in(name: &str, src: &str, loader: &mut Loader<'_>) -> (FileReport, Exports) {
+    // A UTF-8 byte-order mark (as some Windows editors write) is not part of the text.
+    let src = src.strip_prefix('\u{feff}').unwrap_or(src);
     let mut report = FileReport {
         path: name.to_string(),
         source: src.to_string(),

@@ -283,7 +283,8 @@ impl Checker<'_, '_> {
                 "",
             ));
         };
-        // A/B must be a number; then A ≈ B when |c·A/B − c| ≤ ulp/2.
+        // A/B must be a number; then A ≈ B when c·A/B rounds to c at the precision
+        // written (ties away from zero: with `~= 3`, 2.5 rounds to 3; with `~= 2`, not).
         let mut sy = Vec::new();
         crate::decide::symbols_in(&ratio, &mut sy);
         if !sy.is_empty() {
@@ -303,16 +304,20 @@ impl Checker<'_, '_> {
         let half = &ulp / Q::from_integer(BigInt::from(2));
         let ci = crate::interval::Interval::point(c.clone());
         let ratio_value = ev.rat(&ratio);
-        let err = ratio_value
+        // An exact ratio is decided exactly, at any precision written.
+        let scaled = match ratio.as_constant() {
+            Some(r) => Some(crate::interval::Interval::point(&r * &c)),
+            None => ratio_value.as_ref().and_then(|r| r.mul(&ci, ev.prec)),
+        };
+        let verdict = scaled
             .as_ref()
-            .and_then(|r| r.mul(&ci, ev.prec)?.sub(&ci, ev.prec)?.abs());
-        match err {
-            Some(e) if e.hi() <= &half => Ok(Status::Verified {
+            .and_then(|v| rounds_to(v.lo(), v.hi(), &c, &half));
+        match verdict {
+            Some(true) => Ok(Status::Verified {
                 how: Justification::Approx,
                 side_conditions: conditions,
             }),
-            Some(e) if e.lo() > &half => {
-                let scaled = ratio_value.as_ref().and_then(|r| r.mul(&ci, ev.prec));
+            Some(false) => {
                 Err(Diagnostic::error(
                     "E0304",
                     format!(
@@ -326,9 +331,13 @@ impl Checker<'_, '_> {
                     "left / right ≈ {}; so where the right side says {}, the left side is ≈ {}, which does not round to {} at the precision written",
                     ratio_value.map_or_else(|| "?".into(), |r| r.to_decimal_string(6)),
                     show(&c),
-                    scaled.map_or_else(|| "?".into(), |r| r.to_decimal_string(6)),
+                    scaled.as_ref().map_or_else(|| "?".into(), |r| r.to_decimal_string(6)),
                     show(&c)
-                )))
+                ))
+                .note_if(
+                    scaled.is_some_and(|v| v.lo() == v.hi() && (v.lo() - &c).abs() == half),
+                    "it lies exactly halfway; rigor rounds a tie away from zero",
+                ))
             }
             _ => Err(Diagnostic::error(
                 "E0302",
@@ -338,6 +347,30 @@ impl Checker<'_, '_> {
             )),
         }
     }
+}
+
+/// Whether every value in `[lo, hi]` rounds to `c` (`Some(true)`), none does
+/// (`Some(false)`), or the interval straddles a boundary (`None`), where `v` rounds to
+/// `c` at half-width `h` when `c − h <= v < c + h` for `c > 0` (ties away from zero;
+/// mirrored for `c < 0`).
+fn rounds_to(lo: &Q, hi: &Q, c: &Q, h: &Q) -> Option<bool> {
+    let (below, above) = (c - h, c + h);
+    let positive = c > &Q::from_integer(BigInt::from(0));
+    // `inside(v)`: v lies in the rounding interval of c.
+    let inside = |v: &Q| {
+        if positive {
+            v >= &below && v < &above
+        } else {
+            v > &below && v <= &above
+        }
+    };
+    if inside(lo) && inside(hi) {
+        return Some(true);
+    }
+    // Wholly outside: entirely below the interval, or entirely above it.
+    let wholly_below = if positive { hi < &below } else { hi <= &below };
+    let wholly_above = if positive { lo >= &above } else { lo > &above };
+    (wholly_below || wholly_above).then_some(false)
 }
 
 /// A checked point where `a op b` is false, described.

@@ -460,7 +460,7 @@ pub fn pow(base: &Rat, exponent: &Rat, s: &Assumptions) -> Result<Rat, NormError
             return int_pow(base, k);
         }
         let (p, q) = (e.numer().clone(), e.denom().clone());
-        let q = q.to_u32().filter(|q| *q <= 64).ok_or(Limit::Exponent)?;
+        let q = q.to_u32().filter(|q| *q <= 64).ok_or(Limit::RootIndex)?;
         let p = p.to_i64().ok_or(Limit::Exponent)?;
         let r = root(base, q, s)?;
         return int_pow(&r, p);

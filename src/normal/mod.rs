@@ -33,6 +33,8 @@ pub enum Limit {
     Terms,
     /// An exponent would not fit.
     Exponent,
+    /// A fractional power whose root index is above 64 (`x^(1/65)`).
+    RootIndex,
     /// A number would have more digits than rigor computes with.
     Digits,
     /// The time budget of the current claim ran out.
@@ -48,6 +50,9 @@ impl fmt::Display for Limit {
                 poly::max_terms()
             ),
             Limit::Exponent => write!(f, "an exponent exceeds {}", mono::MAX_EXPONENT),
+            Limit::RootIndex => {
+                f.write_str("a root index above 64 (rigor takes roots up to the 64th)")
+            }
             Limit::Digits => write!(
                 f,
                 "a number would have more than {} digits (see --max-digits)",

@@ -105,3 +105,31 @@ fn without_a_clock_there_is_no_time_budget_and_the_verdict_is_the_same() {
     assert_eq!(a.claims, b.claims);
     assert!(a.ok());
 }
+
+#[test]
+fn a_byte_order_mark_is_not_part_of_the_text() {
+    let files = MemoryResolver::new();
+    let text = format!("\u{feff}{ROD}");
+    let r = check_source("rod.deriv", &text, &Options::default(), &files);
+    assert!(r.ok(), "{:?}", r.diagnostics);
+    assert_eq!(r.verified(), 1);
+    // Spans point into the text as reported (without the mark).
+    assert_eq!(r.source, ROD);
+}
+
+#[test]
+fn a_root_index_above_64_is_refused_with_that_limit() {
+    let files = MemoryResolver::new();
+    let text = "symbols x > 0\nclaim [r] x^(1/65) = x^(1/65)\n";
+    let r = check_source("r.deriv", text, &Options::default(), &files);
+    assert!(!r.ok());
+    let msg: Vec<&str> = r.diagnostics.iter().map(|d| d.message.as_str()).collect();
+    assert!(
+        msg.iter().any(|m| m.contains("a root index above 64")),
+        "{msg:?}"
+    );
+    // The 64th root itself is taken.
+    let text = "symbols x > 0\nclaim [r] (x^64)^(1/64) = x\n";
+    let r = check_source("r.deriv", text, &Options::default(), &files);
+    assert!(r.ok(), "{:?}", r.diagnostics);
+}
