@@ -7,7 +7,8 @@ use crate::diag::{line_col, Diagnostic, Severity};
 /// One workflow command per diagnostic, each on its own line:
 /// `::error file=PATH,line=L,col=C,endLine=L2,endColumn=C2,title=CODE::MESSAGE`
 /// (`::warning` for warnings, `::notice` for notes). The message is followed by the
-/// diagnostic's notes on further lines. Escaping follows GitHub's rules: in the
+/// words under the caret (the hint) and the diagnostic's notes (both sides, the
+/// counterexample) on further lines. Escaping follows GitHub's rules: in the
 /// message `%`, `\r`, `\n` become `%25`, `%0D`, `%0A`; in properties also `:` and `,`
 /// become `%3A` and `%2C`.
 pub fn report(r: &FileReport) -> String {
@@ -41,6 +42,14 @@ fn command(r: &FileReport, d: &Diagnostic) -> String {
     }
     props.push(format!("title={}", escape_property(d.code)));
     let mut message = d.message.clone();
+    // The words under the caret are the hint ("the left side is 2 × the right side",
+    // "a sign error?"): an annotation has no caret, so they follow the headline.
+    if let Some((_, label)) = &d.primary {
+        if !label.is_empty() {
+            message.push('\n');
+            message.push_str(label);
+        }
+    }
     for n in &d.notes {
         message.push('\n');
         message.push_str(n);

@@ -20,7 +20,10 @@ use serde_json::{json, Value};
 /// did not hold; a note says which) or `error`; `justification` is
 /// `{"kind": "identity"}`, `{"kind": "facts", "facts": [...]}`,
 /// `{"kind": "signs", "facts": [...]}`, `{"kind": "approx"}`, or `null` when not
-/// verified. `lhs`, `rhs`, positions and labels are `null` when unknown.
+/// verified. `lhs`, `rhs`, positions and labels are `null` when unknown. A
+/// diagnostic's `label` is the hint written under the caret ("the left side is 2 × the
+/// right side", "a sign error?"); its `notes` hold both sides and the checked
+/// counterexample (`"counterexample: at …"`).
 pub fn report(r: &FileReport) -> Value {
     let claims: Vec<Value> = r
         .claims

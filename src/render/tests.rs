@@ -206,7 +206,7 @@ fn github_commands() {
     };
     assert_eq!(
         github::report(&r),
-        "::error file=dir/x%2Cy.deriv,line=2,col=9,endLine=2,endColumn=12,title=E0301::not equal: 100%25 wrong%0Aat a = 1\n\
+        "::error file=dir/x%2Cy.deriv,line=2,col=9,endLine=2,endColumn=12,title=E0301::not equal: 100%25 wrong%0Ahere%0Aat a = 1\n\
          ::warning file=dir/x%2Cy.deriv,title=W0001::assuming a != 0\n"
     );
 }

@@ -287,6 +287,18 @@ fn check_json_is_one_object_per_line() {
     assert!(!diags.is_empty());
     assert_eq!(diags[0]["code"], "E0301");
     assert_eq!(diags[0]["line"], 50);
+    // The hint (the words under the caret) and the counterexample are in the JSON too.
+    assert_eq!(
+        diags[0]["label"],
+        "the left side is 3 R/4 × the right side (a wrong power?)"
+    );
+    let notes = diags[0]["notes"].as_array().expect("notes");
+    assert!(
+        notes.iter().any(|n| n
+            .as_str()
+            .is_some_and(|n| n.starts_with("counterexample: at R = "))),
+        "{notes:?}"
+    );
     let failed = v["claims"]
         .as_array()
         .expect("claims")
@@ -329,6 +341,17 @@ fn check_github_annotations() {
     );
     // A workflow command is one line: newlines in messages are escaped.
     assert!(errors[0].contains("%0A"), "{}", errors[0]);
+    // The hint under the caret and the checked counterexample travel with it.
+    assert!(
+        errors[0].contains("%0Athe left side is 3 R/4 × the right side (a wrong power?)%0A"),
+        "{}",
+        errors[0]
+    );
+    assert!(
+        errors[0].contains("%0Acounterexample: at R = "),
+        "{}",
+        errors[0]
+    );
 
     let r = run(&["check", "--format", "github", "derivations/"]);
     expect_code(&r, 0, "github, verified");
