@@ -51,6 +51,9 @@ impl Checker<'_, '_> {
         deadline: Option<Deadline>,
     ) {
         let span = claim.span;
+        if let Some(msg) = self.uses_failed_name(chain) {
+            return self.push_not_checked_claim(claim, chain, msg);
+        }
         let Some(subs) = self.where_subs(where_) else {
             return self.push_error_claim(claim, chain);
         };
@@ -256,6 +259,15 @@ impl Checker<'_, '_> {
             .push(d.note("fix the step it cites first; this one is checked again then"));
     }
 
+    /// A note N0205 for something not checked because of a mistake reported earlier.
+    pub(super) fn note_not_checked(&mut self, msg: String, span: Span) {
+        let mut d = crate::diag::Diagnostic::error("N0205", msg, span, "not checked");
+        d.severity = crate::diag::Severity::Note;
+        self.report
+            .diagnostics
+            .push(d.note("fix that first; this is checked again then"));
+    }
+
     /// The conditions a verified step's fact carries: its own, the elimination's
     /// divisors and those of the facts it used.
     fn fact_conditions(&mut self, own: Vec<Condition>) -> Vec<Condition> {
@@ -376,6 +388,54 @@ impl Checker<'_, '_> {
             plain(&r.hi),
             plain(v)
         ))
+    }
+
+    /// "not checked: …" when the chain uses a name that a failed `use` would have
+    /// defined (the `use` has the error).
+    fn uses_failed_name(&self, chain: &Chain) -> Option<String> {
+        if self.failed_names.is_empty() {
+            return None;
+        }
+        let all = |_: &str| None;
+        let exprs = std::iter::once(&chain.first).chain(chain.links.iter().map(|l| &l.rhs));
+        let mut names: Vec<(usize, String, String)> = exprs
+            .flat_map(|e| super::scope::undeclared(e, &self.scope, &all))
+            .filter_map(|(n, _)| {
+                let (line, why) = self.failed_names.get(&n)?;
+                Some((*line, n, why.clone()))
+            })
+            .collect();
+        names.sort();
+        let (_, name, why) = names.into_iter().next()?;
+        Some(format!("not checked: it uses `{name}`, {why}"))
+    }
+
+    /// A claim none of whose links is checked (`msg` says why, as a note).
+    fn push_not_checked_claim(&mut self, mut claim: ClaimReport, chain: &Chain, msg: String) {
+        if let Some(l) = &claim.label {
+            self.failed_labels.insert(l.clone(), claim.line);
+        }
+        let whole = chain
+            .links
+            .last()
+            .map_or(chain.first.span, |l| chain.first.span.to(l.span));
+        self.note_not_checked(msg, whole);
+        for (i, link) in chain.links.iter().enumerate() {
+            let span = if i == 0 {
+                chain.first.span.to(link.span)
+            } else {
+                link.span
+            };
+            claim.links.push(LinkReport {
+                span,
+                op: link.op,
+                lhs: None,
+                rhs: None,
+                status: Status::NotChecked,
+                units: None,
+            });
+        }
+        self.report.claims.push(claim);
     }
 
     fn push_error_claim(&mut self, mut claim: ClaimReport, chain: &Chain) {

@@ -149,6 +149,9 @@ pub struct Exports {
     pub signs: HashMap<String, crate::normal::Sign>,
     /// The file's unknowns (and `time` symbols): they cannot be instantiated.
     pub unknowns: Vec<String>,
+    /// Its `let` definitions, name → value as written: `use` imports claims, and names
+    /// a definition as what it is.
+    pub lets: HashMap<String, String>,
     /// The first input error of the file, if it has one.
     pub error: Option<String>,
 }

@@ -42,12 +42,30 @@ impl Checker<'_, '_> {
         };
         for l in labels {
             let Some(eqs) = exports.claims.get(&l.name) else {
-                let why = match &exports.error {
-                    Some(e) => format!("\"{path}\" does not check: {e}"),
-                    None => format!("\"{path}\" has no verified equation [{}]", l.name),
+                let (why, hint) = match (&exports.error, exports.lets.get(&l.name)) {
+                    (_, Some(value)) => (
+                        format!(
+                            "[{}] names a `let` in \"{path}\", not a claim: `use` imports verified claims",
+                            l.name
+                        ),
+                        format!("define it here too: `let {} = {value}`", l.name),
+                    ),
+                    (Some(e), None) => (
+                        format!("\"{path}\" does not check: {e}"),
+                        "not found, or not verified there".to_string(),
+                    ),
+                    (None, None) => (
+                        format!("\"{path}\" has no verified equation [{}]", l.name),
+                        "not found, or not verified there".to_string(),
+                    ),
                 };
-                self.error("E0206", why, l.span, "not found, or not verified there");
+                self.error("E0206", why, l.span, &hint);
                 self.import_failed(std::slice::from_ref(l));
+                if exports.lets.contains_key(&l.name) && !self.scope.is_declared(&l.name) {
+                    let line = self.line(l.span);
+                    let why = format!("which the `use` on line {line} did not bring in");
+                    self.failed_names.insert(l.name.clone(), (line, why));
+                }
                 continue;
             };
             let label = self.new_label(&Some(l.clone()));

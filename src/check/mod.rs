@@ -27,6 +27,7 @@ mod dims;
 mod entry;
 mod explain;
 mod imports;
+mod reading;
 mod relations;
 pub mod report;
 pub mod scope;

@@ -49,6 +49,69 @@ impl Scope {
         self.names.get(base) == Some(&Decl::Time) || self.unknowns.contains(base)
     }
 
+    /// What to say under an undeclared name: a derivative of a constant (`theta''` with
+    /// `symbols theta`), names glued together (`mg` for `m g`), a near miss, or how
+    /// to declare it.
+    pub fn undeclared_hint(&self, name: &str) -> String {
+        let base = name.trim_end_matches('\'');
+        if base.len() < name.len() {
+            let what = match self.names.get(base) {
+                Some(Decl::Symbol) => Some("`symbols`"),
+                Some(Decl::Unknown) => Some("`unknowns`"),
+                _ => None,
+            };
+            if let Some(what) = what {
+                return format!(
+                    "`{base}` is declared with {what}, so it has no time derivative: declare it with `time {base}`"
+                );
+            }
+        }
+        if let Some(parts) = self.split_glued(name) {
+            return format!(
+                "did you mean `{}`? (a product needs a space between its factors)",
+                parts.join(" ")
+            );
+        }
+        match self.suggest(name) {
+            Some(s) => format!("did you mean `{s}`?"),
+            None => "declare it with `symbols`, `time` or `unknowns`".into(),
+        }
+    }
+
+    /// `name` as two or more declared names written together (`mgd` → m, g, d), the
+    /// fewest pieces first, each piece a symbol, time symbol (with primes), unknown or
+    /// definition; `None` if there is no such reading.
+    fn split_glued(&self, name: &str) -> Option<Vec<String>> {
+        let n = name.len();
+        if n > 64 {
+            return None;
+        }
+        // best[i]: the fewest pieces that spell name[..i].
+        let mut best: Vec<Option<Vec<String>>> = vec![None; n + 1];
+        best[0] = Some(Vec::new());
+        for i in 0..n {
+            let Some(prefix) = best[i].clone() else {
+                continue;
+            };
+            for (j, slot) in best.iter_mut().enumerate().skip(i + 1) {
+                let Some(piece) = name.get(i..j) else {
+                    continue;
+                };
+                let usable =
+                    self.is_declared(piece) && !matches!(self.names.get(piece), Some(Decl::Body));
+                if !usable || piece == name {
+                    continue;
+                }
+                let mut cand = prefix.clone();
+                cand.push(piece.to_string());
+                if slot.as_ref().is_none_or(|b| cand.len() < b.len()) {
+                    *slot = Some(cand);
+                }
+            }
+        }
+        best[n].take().filter(|p| p.len() >= 2)
+    }
+
     /// The declared name closest to `name`, if reasonably close.
     pub fn suggest(&self, name: &str) -> Option<String> {
         let mut best: Option<(usize, String)> = None;

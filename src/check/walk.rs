@@ -41,6 +41,10 @@ pub struct Checker<'l, 'o> {
     /// Labels of givens and claims that did not hold (or could not be read), with
     /// their line: a later `by [..]` citing one is not checked rather than an error.
     pub(super) failed_labels: HashMap<String, usize>,
+    /// Names already reported: undeclared ones, and those a failed `use` would have
+    /// defined (a `let` of the other file), with why (`undeclared (line 7)`). A later
+    /// use is not checked, rather than a second error for the same mistake.
+    pub(super) failed_names: HashMap<String, (usize, String)>,
     pub(super) exports: Exports,
     body_coords: HashMap<String, Vec<String>>,
     /// Set when lowering ran out of time (the link is undecided).
@@ -72,6 +76,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             facts: Vec::new(),
             labels: HashMap::new(),
             failed_labels: HashMap::new(),
+            failed_names: HashMap::new(),
             exports: Exports::default(),
             body_coords: HashMap::new(),
             timed_out: false,
@@ -105,6 +110,13 @@ impl<'l, 'o> Checker<'l, 'o> {
             .collect();
         for item in &file.items {
             if let Item::Stmt(st) = item {
+                for e in super::reading::exprs_of(&st.kind) {
+                    super::reading::glued_after_slash(
+                        e,
+                        &self.report.source,
+                        &mut self.report.diagnostics,
+                    );
+                }
                 self.statement(&st.kind, st.span);
             }
         }
@@ -158,11 +170,20 @@ impl<'l, 'o> Checker<'l, 'o> {
         };
         let bad = undeclared(e, &self.scope, &lookup);
         for (name, span) in &bad {
-            let hint = match self.scope.suggest(name) {
-                Some(s) => format!("did you mean `{s}`?"),
-                None => "declare it with `symbols`, `time` or `unknowns`".into(),
-            };
+            if let Some((_, why)) = self.failed_names.get(name) {
+                let msg = format!("not checked: it uses `{name}`, {why}");
+                if !self.report.diagnostics.iter().any(|d| d.message == msg) {
+                    self.note_not_checked(msg, *span);
+                }
+                continue;
+            }
+            let hint = self.scope.undeclared_hint(name);
             self.error("E0201", format!("undeclared symbol `{name}`"), *span, &hint);
+            let line = self.line(*span);
+            self.failed_names.insert(
+                name.clone(),
+                (line, format!("which is undeclared (line {line})")),
+            );
         }
         bad.is_empty()
     }
@@ -329,6 +350,10 @@ impl<'l, 'o> Checker<'l, 'o> {
                     return;
                 };
                 if self.declare(&name.name, name.span, Decl::Def) {
+                    let written = self.report.source.get(value.span.start..value.span.end);
+                    self.exports
+                        .lets
+                        .insert(name.name.clone(), written.unwrap_or_default().to_string());
                     self.env.defs.insert(name.name.clone(), v);
                     self.guard_env.defs.insert(name.name.clone(), value.clone());
                 }

@@ -133,3 +133,72 @@ fn a_root_index_above_64_is_refused_with_that_limit() {
     let r = check_source("r.deriv", text, &Options::default(), &files);
     assert!(r.ok(), "{:?}", r.diagnostics);
 }
+
+/// The codes and hints of `src`'s diagnostics, in order.
+fn diagnoses(src: &str) -> Vec<(String, String)> {
+    let r = check_source("x.deriv", src, &Options::default(), &MemoryResolver::new());
+    r.diagnostics
+        .iter()
+        .map(|d| {
+            let hint = d.primary.as_ref().map(|p| p.1.clone()).unwrap_or_default();
+            (d.code.to_string(), hint)
+        })
+        .collect()
+}
+
+#[test]
+fn a_slash_then_glued_factors_warns_how_it_was_read() {
+    let warned = |src: &str| {
+        diagnoses(src)
+            .iter()
+            .filter(|(c, _)| c == "W0101")
+            .map(|(_, h)| h.clone())
+            .collect::<Vec<_>>()
+    };
+    // Glued after a `/`: read as (3 g/2) L, and said so.
+    assert_eq!(
+        warned("symbols g L > 0\nclaim 3 g/2L = 3 g L/2\n"),
+        ["if 2 L is the denominator, write `3 g/(2 L)`"]
+    );
+    assert_eq!(
+        warned("symbols g L > 0\nclaim g/2L^2 = g L^2/2\n"),
+        ["if 2 L^2 is the denominator, write `g/(2 L^2)`"]
+    );
+    // Spaced, parenthesised, multiplied explicitly or written as \frac: no warning
+    // (these claims are true, so nothing at all is said).
+    for src in [
+        "symbols m v > 0\nclaim 1/2 m v^2 = m v^2/2\n",
+        "symbols g L > 0\nclaim 3 g/(2L) = 3 g/(2 L)\n",
+        "symbols g L > 0\nclaim 3 g/2*L = 3 g L/2\n",
+        "symbols g L > 0\nclaim $$\\frac{3g}{2}L = \\frac{3gL}{2}$$\n",
+    ] {
+        assert!(diagnoses(src).is_empty(), "{src}: {:?}", diagnoses(src));
+    }
+}
+
+#[test]
+fn an_undeclared_name_is_diagnosed_as_the_format_would_read_it() {
+    let hint = |src: &str| diagnoses(src).first().cloned().unwrap_or_default();
+    // Declared names glued together: the fewest pieces.
+    assert_eq!(
+        hint("symbols m g d > 0\nclaim mgd = m g d\n"),
+        (
+            "E0201".into(),
+            "did you mean `m g d`? (a product needs a space between its factors)".into()
+        )
+    );
+    assert_eq!(
+        hint("symbols m I_G R > 0\nclaim I_Gm = m I_G\n").1,
+        "did you mean `I_G m`? (a product needs a space between its factors)"
+    );
+    // A derivative of a constant.
+    assert_eq!(
+        hint("symbols theta\nclaim theta' = 0\n").1,
+        "`theta` is declared with `symbols`, so it has no time derivative: declare it with `time theta`"
+    );
+    // A near miss is still a near miss.
+    assert_eq!(
+        hint("symbols omega > 0\nclaim omgea = omega\n").1,
+        "did you mean `omega`?"
+    );
+}
