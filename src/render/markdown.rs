@@ -60,39 +60,14 @@ fn block_markdown(block: &Block, out: &mut String) {
             out.push_str(&line);
             out.push('\n');
         }
-        Block::Display {
-            prefix,
-            math,
-            note,
-            tag,
-        } => {
+        Block::Display { prefix, .. } => {
             if let Some(p) = prefix {
                 out.push_str(&format!("*{}*\n\n", markdown_inline(p)));
             }
-            out.push_str("$$\n");
-            out.push_str(math);
-            if let Some(n) = note {
-                out.push_str(&format!(" \\qquad\\text{{({})}}", mathjax_text(n)));
-            }
-            if let Some(t) = tag {
-                out.push_str(&format!(" \\tag{{{}}}", mathjax_text(t)));
-            }
-            out.push_str("\n$$\n");
+            out.push_str(&format!("$$\n{}\n$$\n", display_latex(block).unwrap_or_default()));
         }
-        Block::Claim { rows, tag } => {
-            out.push_str("$$\n\\begin{aligned}\n");
-            for (k, row) in rows.iter().enumerate() {
-                row_markdown(row, out);
-                if k + 1 < rows.len() {
-                    out.push_str(" \\\\");
-                }
-                out.push('\n');
-            }
-            out.push_str("\\end{aligned}");
-            if let Some(t) = tag {
-                out.push_str(&format!(" \\tag{{{}}}", mathjax_text(t)));
-            }
-            out.push_str("\n$$\n");
+        Block::Claim { .. } => {
+            out.push_str(&format!("$$\n{}\n$$\n", display_latex(block).unwrap_or_default()));
         }
         Block::Problems(problems) => {
             for (k, p) in problems.iter().enumerate() {
@@ -113,6 +88,39 @@ fn block_markdown(block: &Block, out: &mut String) {
             out.push_str("```\n");
         }
     }
+}
+
+/// The LaTeX of a displayed formula or claim (what goes between `$$` and `$$`), with
+/// its note and tag; text inside is safe for MathJax and KaTeX. `None` for other blocks.
+pub(crate) fn display_latex(block: &Block) -> Option<String> {
+    let mut out = String::new();
+    match block {
+        Block::Display { math, note, tag, .. } => {
+            out.push_str(math);
+            if let Some(n) = note {
+                out.push_str(&format!(" \\qquad\\text{{({})}}", mathjax_text(n)));
+            }
+            if let Some(t) = tag {
+                out.push_str(&format!(" \\tag{{{}}}", mathjax_text(t)));
+            }
+        }
+        Block::Claim { rows, tag } => {
+            out.push_str("\\begin{aligned}\n");
+            for (k, row) in rows.iter().enumerate() {
+                row_markdown(row, &mut out);
+                if k + 1 < rows.len() {
+                    out.push_str(" \\\\");
+                }
+                out.push('\n');
+            }
+            out.push_str("\\end{aligned}");
+            if let Some(t) = tag {
+                out.push_str(&format!(" \\tag{{{}}}", mathjax_text(t)));
+            }
+        }
+        _ => return None,
+    }
+    Some(out)
 }
 
 /// `` `text` ``, with a fence longer than any run of backticks inside.

@@ -1,5 +1,5 @@
 //! Renderers of checker results: terminal text, JSON, GitHub annotations, and
-//! worked solutions in LaTeX and Markdown.
+//! worked solutions in LaTeX and Markdown, and the browser playground's answers (`web`).
 //!
 //! Everything here reads a [`FileReport`](crate::check::report::FileReport) and
 //! the syntax tree it holds; nothing here decides truth. Expressions are printed
@@ -14,6 +14,7 @@ pub mod latex;
 pub mod lint;
 pub mod mark;
 pub mod markdown;
+pub mod web;
 mod solution;
 mod text;
 

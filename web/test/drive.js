@@ -1,0 +1,149 @@
+// Drives a real headless Chromium through the DevTools protocol (over a pipe: no
+// extra packages) for rigor's browser tests: opens URL, waits until the page has
+// finished checking (#status data-kind is ok, failed or error), optionally types new
+// text into the editor and waits again, then prints what the page shows as JSON.
+//
+//   node web/test/drive.js URL [--type TEXT] [--screenshot OUT.png] [--timeout MS]
+//
+// Output: {"status": kind, "statusText", "summary", "marks": [[status, line, detail]],
+//          "diagnostics": [[severity, line, text]], "preview": text,
+//          "elements": {tag: count} (of the preview), "scriptRan": bool, "hash"}
+"use strict";
+const { spawn } = require("child_process");
+const fs = require("fs");
+const os = require("os");
+const path = require("path");
+
+const args = process.argv.slice(2);
+const url = args[0];
+const opt = (name) => {
+  const i = args.indexOf(name);
+  return i > 0 ? args[i + 1] : null;
+};
+const timeoutMs = Number(opt("--timeout") || 30000);
+const browser = process.env.CHROMIUM || "chromium";
+
+const profile = fs.mkdtempSync(path.join(os.tmpdir(), "rigor-chromium-"));
+const chrome = spawn(
+  browser,
+  [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--no-first-run",
+    "--disable-extensions",
+    "--remote-debugging-pipe",
+    "--window-size=1400,1000",
+    `--user-data-dir=${profile}`,
+    "about:blank",
+  ],
+  { stdio: ["ignore", "ignore", "ignore", "pipe", "pipe"] },
+);
+const toChrome = chrome.stdio[3];
+const fromChrome = chrome.stdio[4];
+
+let nextId = 0;
+const waiting = new Map();
+let buffer = Buffer.alloc(0);
+fromChrome.on("data", (chunk) => {
+  buffer = Buffer.concat([buffer, chunk]);
+  let end;
+  while ((end = buffer.indexOf(0)) >= 0) {
+    const msg = JSON.parse(buffer.subarray(0, end).toString("utf8"));
+    buffer = buffer.subarray(end + 1);
+    if (msg.id !== undefined && waiting.has(msg.id)) {
+      const { resolve, reject } = waiting.get(msg.id);
+      waiting.delete(msg.id);
+      if (msg.error) reject(new Error(JSON.stringify(msg.error)));
+      else resolve(msg.result);
+    }
+  }
+});
+
+function send(method, params = {}, sessionId) {
+  const id = ++nextId;
+  const msg = { id, method, params };
+  if (sessionId) msg.sessionId = sessionId;
+  toChrome.write(JSON.stringify(msg) + "\0");
+  return new Promise((resolve, reject) => waiting.set(id, { resolve, reject }));
+}
+
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
+function finish(code, message) {
+  if (message) process.stderr.write(message + "\n");
+  try {
+    chrome.kill("SIGKILL");
+  } catch (e) {}
+  try {
+    fs.rmSync(profile, { recursive: true, force: true });
+  } catch (e) {}
+  process.exit(code);
+}
+
+setTimeout(() => finish(2, `timed out after ${timeoutMs} ms`), timeoutMs + 10000).unref();
+
+async function evaluate(session, expression) {
+  const r = await send("Runtime.evaluate", { expression, returnByValue: true, awaitPromise: true }, session);
+  if (r.exceptionDetails) throw new Error(JSON.stringify(r.exceptionDetails));
+  return r.result.value;
+}
+
+// Waits until the page is done with the text it holds: not loading, not checking.
+async function settled(session, deadline) {
+  for (;;) {
+    const kind = await evaluate(
+      session,
+      `(() => { const s = document.getElementById("status"); return s ? (s.dataset.kind || "") : ""; })()`,
+    ).catch(() => "");
+    if (["ok", "failed", "error"].includes(kind)) return kind;
+    if (Date.now() > deadline) throw new Error(`the page did not finish checking (status: ${kind || "none"})`);
+    await sleep(100);
+  }
+}
+
+const SNAPSHOT = `(() => {
+  const q = (s) => Array.from(document.querySelectorAll(s));
+  const elements = {};
+  for (const e of q("#preview *")) elements[e.localName] = (elements[e.localName] || 0) + 1;
+  return {
+    status: document.getElementById("status").dataset.kind,
+    statusText: document.getElementById("status").textContent,
+    summary: document.getElementById("summary").textContent,
+    marks: q("[data-status]").map((e) => [e.dataset.status, Number(e.dataset.line), e.dataset.detail || ""]),
+    diagnostics: q(".diag").map((e) => [e.dataset.severity, e.dataset.line ? Number(e.dataset.line) : null, e.textContent]),
+    preview: document.getElementById("preview").textContent,
+    elements,
+    scriptRan: !!window.__rigorInjected,
+    hash: location.hash,
+  };
+})()`;
+
+(async () => {
+  const { targetId } = await send("Target.createTarget", { url: "about:blank" });
+  const { sessionId } = await send("Target.attachToTarget", { targetId, flatten: true });
+  await send("Page.enable", {}, sessionId);
+  await send("Page.navigate", { url }, sessionId);
+  const deadline = Date.now() + timeoutMs;
+  await sleep(200);
+  await settled(sessionId, deadline);
+  const typed = opt("--type");
+  if (typed !== null) {
+    // As a user would: replace the text and fire an input event (the page debounces).
+    await evaluate(
+      sessionId,
+      `(() => { const s = document.getElementById("source"); s.value = ${JSON.stringify(typed)};
+                s.dispatchEvent(new Event("input")); })()`,
+    );
+    await sleep(500);
+    await settled(sessionId, deadline);
+  }
+  const snapshot = await evaluate(sessionId, SNAPSHOT);
+  const shot = opt("--screenshot");
+  if (shot) {
+    const { data } = await send("Page.captureScreenshot", { format: "png" }, sessionId);
+    fs.writeFileSync(shot, Buffer.from(data, "base64"));
+  }
+  process.stdout.write(JSON.stringify(snapshot) + "\n");
+  finish(0);
+})().catch((e) => finish(1, String(e && e.stack ? e.stack : e)));
