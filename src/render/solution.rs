@@ -650,6 +650,14 @@ impl<'a> Builder<'a> {
             Severity::Warning => "warning",
             Severity::Note => "note",
         };
+        // The words under the caret are the hint ("the left side is 2 × the right side
+        // (a constant factor)"): a document has no caret, so they lead the notes.
+        let mut notes = d.notes.clone();
+        if let Some((_, hint)) = d.primary.as_ref().filter(|(_, h)| !h.is_empty()) {
+            if in_claim && d.severity == Severity::Error {
+                notes.insert(0, hint.clone());
+            }
+        }
         Problem {
             kind,
             line: d
@@ -657,7 +665,7 @@ impl<'a> Builder<'a> {
                 .as_ref()
                 .map(|(s, _)| line_col(&self.report.source, s.start).0),
             message: d.message.clone(),
-            notes: d.notes.clone(),
+            notes,
         }
     }
 }

@@ -424,11 +424,18 @@ fn failures_are_marked_in_documents() {
         ),
         "{tex}"
     );
+    // The hint under the caret leads the notes (a document has no caret).
+    assert!(
+        tex.contains("\\hspace*{1em}here\\par\n\\hspace*{1em}at m = 1"),
+        "{tex}"
+    );
     compile("failures", &tex);
     let md = markdown::document(&r);
     assert!(md.starts_with("# Small\n"), "{md}");
     assert!(
-        md.contains("> **not verified** (line 6): the two sides differ by a factor {2} & 100%\n"),
+        md.contains(
+            "> **not verified** (line 6): the two sides differ by a factor {2} & 100%\n>\n> here\n>\n> at m = 1\n"
+        ),
         "{md}"
     );
     assert!(
