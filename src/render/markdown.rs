@@ -64,10 +64,16 @@ fn block_markdown(block: &Block, out: &mut String) {
             if let Some(p) = prefix {
                 out.push_str(&format!("*{}*\n\n", markdown_inline(p)));
             }
-            out.push_str(&format!("$$\n{}\n$$\n", display_latex(block).unwrap_or_default()));
+            out.push_str(&format!(
+                "$$\n{}\n$$\n",
+                display_latex(block).unwrap_or_default()
+            ));
         }
         Block::Claim { .. } => {
-            out.push_str(&format!("$$\n{}\n$$\n", display_latex(block).unwrap_or_default()));
+            out.push_str(&format!(
+                "$$\n{}\n$$\n",
+                display_latex(block).unwrap_or_default()
+            ));
         }
         Block::Problems(problems) => {
             for (k, p) in problems.iter().enumerate() {
@@ -95,7 +101,9 @@ fn block_markdown(block: &Block, out: &mut String) {
 pub(crate) fn display_latex(block: &Block) -> Option<String> {
     let mut out = String::new();
     match block {
-        Block::Display { math, note, tag, .. } => {
+        Block::Display {
+            math, note, tag, ..
+        } => {
             out.push_str(math);
             if let Some(n) = note {
                 out.push_str(&format!(" \\qquad\\text{{({})}}", mathjax_text(n)));

@@ -14,9 +14,9 @@ pub mod latex;
 pub mod lint;
 pub mod mark;
 pub mod markdown;
-pub mod web;
 mod solution;
 mod text;
+pub mod web;
 
 #[cfg(test)]
 mod tests;

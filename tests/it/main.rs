@@ -14,6 +14,7 @@ mod normal;
 mod props;
 mod readme;
 mod soundness;
+mod web;
 mod workloads;
 
 /// The number of proptest cases: `default`, or `PROPTEST_CASES` when it is set, so a

@@ -3,11 +3,15 @@
 // finished checking (#status data-kind is ok, failed or error), optionally types new
 // text into the editor and waits again, then prints what the page shows as JSON.
 //
-//   node web/test/drive.js URL [--type TEXT] [--screenshot OUT.png] [--timeout MS]
+//   node web/test/drive.js URL [--type TEXT] [--examples] [--screenshot OUT.png]
+//                              [--timeout MS]
 //
+// With --examples it clicks every example button in turn, waits for its check and
+// records [name, status, summary] in "examples".
 // Output: {"status": kind, "statusText", "summary", "marks": [[status, line, detail]],
 //          "diagnostics": [[severity, line, text]], "preview": text,
-//          "elements": {tag: count} (of the preview), "scriptRan": bool, "hash"}
+//          "elements": {tag: count} (of the preview), "scriptRan": bool, "hash",
+//          "exampleNames": [name], "examples": [[name, status, summary]]}
 "use strict";
 const { spawn } = require("child_process");
 const fs = require("fs");
@@ -81,7 +85,8 @@ function finish(code, message) {
   process.exit(code);
 }
 
-setTimeout(() => finish(2, `timed out after ${timeoutMs} ms`), timeoutMs + 10000).unref();
+const overall = timeoutMs * (args.includes("--examples") ? 20 : 1) + 10000;
+setTimeout(() => finish(2, `timed out after ${overall} ms`), overall).unref();
 
 async function evaluate(session, expression) {
   const r = await send("Runtime.evaluate", { expression, returnByValue: true, awaitPromise: true }, session);
@@ -116,6 +121,7 @@ const SNAPSHOT = `(() => {
     elements,
     scriptRan: !!window.__rigorInjected,
     hash: location.hash,
+    exampleNames: q("[data-example]").map((e) => e.dataset.example),
   };
 })()`;
 
@@ -139,6 +145,19 @@ const SNAPSHOT = `(() => {
     await settled(sessionId, deadline);
   }
   const snapshot = await evaluate(sessionId, SNAPSHOT);
+  if (args.includes("--examples")) {
+    snapshot.examples = [];
+    for (const name of snapshot.exampleNames) {
+      await evaluate(
+        sessionId,
+        `(() => { document.getElementById("status").dataset.kind = "busy";
+                  document.querySelector('[data-example=${JSON.stringify(name)}]').click(); })()`,
+      );
+      const kind = await settled(sessionId, Date.now() + timeoutMs);
+      const summary = await evaluate(sessionId, `document.getElementById("summary").textContent`);
+      snapshot.examples.push([name, kind, summary]);
+    }
+  }
   const shot = opt("--screenshot");
   if (shot) {
     const { data } = await send("Page.captureScreenshot", { format: "png" }, sessionId);
