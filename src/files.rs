@@ -182,6 +182,43 @@ pub fn parallel<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Ve
         .collect()
 }
 
+/// The reports of a folder's files in the order of its `ORDER` file (one path per
+/// line, relative to the folder; blank lines and `#` comments ignored), the files it
+/// does not list after them in path order; without `ORDER`, in path order. A listed
+/// file that does not exist, or one listed twice, is an error.
+pub fn in_book_order(dir: &Path, mut reports: Vec<FileReport>) -> Result<Vec<FileReport>, String> {
+    reports.sort_by(|a, b| a.path.cmp(&b.path));
+    let order_file = dir.join("ORDER");
+    if !order_file.is_file() {
+        return Ok(reports);
+    }
+    let text = read(&order_file, 1_000_000)?;
+    let mut out = Vec::new();
+    for (n, line) in text.lines().enumerate() {
+        let name = line.split('#').next().unwrap_or("").trim();
+        if name.is_empty() {
+            continue;
+        }
+        let want = dir.join(name);
+        let Some(i) = reports.iter().position(|r| Path::new(&r.path) == want) else {
+            let twice = out.iter().any(|r: &FileReport| Path::new(&r.path) == want);
+            return Err(format!(
+                "{}:{}: `{name}` {}",
+                order_file.display(),
+                n + 1,
+                if twice {
+                    "is listed twice"
+                } else {
+                    "is not a `.deriv` file of the folder"
+                }
+            ));
+        };
+        out.push(reports.remove(i));
+    }
+    out.extend(reports);
+    Ok(out)
+}
+
 /// Checks files and folders (folders: every `.deriv` file inside, recursively), two at a
 /// time; the reports come back in a stable order (sorted by path within each argument).
 /// A file's imports must stay inside the folder given (or the file's own folder).

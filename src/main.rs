@@ -102,11 +102,15 @@ enum Command {
     },
     /// Write a derivation as a standalone LaTeX worked solution.
     Latex {
-        /// The derivation file.
+        /// The derivation file, or a folder: one book of all its files (in the order of
+        /// its `ORDER` file, if it has one).
         file: std::path::PathBuf,
         /// Output file (default: standard output).
         #[arg(short)]
         o: Option<std::path::PathBuf>,
+        /// The title of a book (default: "Worked solutions").
+        #[arg(long)]
+        title: Option<String>,
     },
     /// Check the chains of equations inside Markdown (`$$…$$`) and LaTeX documents.
     Lint {
@@ -140,11 +144,15 @@ enum Command {
     },
     /// Write a derivation as a Markdown worked solution.
     Markdown {
-        /// The derivation file.
+        /// The derivation file, or a folder: one book of all its files (in the order of
+        /// its `ORDER` file, if it has one).
         file: std::path::PathBuf,
         /// Output file (default: standard output).
         #[arg(short)]
         o: Option<std::path::PathBuf>,
+        /// The title of a book (default: "Worked solutions").
+        #[arg(long)]
+        title: Option<String>,
     },
 }
 
@@ -194,8 +202,12 @@ fn main() -> ExitCode {
             verbose,
             max_file_size,
         } => cli::check(&paths, format, verbose, timeout, max_file_size, &opts),
-        Command::Latex { file, o } => cli::document(&file, o.as_deref(), true, &opts),
-        Command::Markdown { file, o } => cli::document(&file, o.as_deref(), false, &opts),
+        Command::Latex { file, o, title } => {
+            cli::document(&file, (o.as_deref(), title.as_deref()), true, &opts)
+        }
+        Command::Markdown { file, o, title } => {
+            cli::document(&file, (o.as_deref(), title.as_deref()), false, &opts)
+        }
         Command::Lint { docs, format } => cli::lint(&docs, format, timeout, &opts),
         Command::Mark {
             reference,

@@ -27,6 +27,7 @@ macro_rules! errln {
 }
 
 use crate::Format;
+use rigor::check::report::FileReport;
 use rigor::decide::Verdict;
 use rigor::diag::{self, Diagnostic};
 use rigor::lower::{build_body, Env, LowerError, Lowerer};
@@ -363,12 +364,27 @@ pub fn check(
 }
 
 /// `rigor latex` / `rigor markdown`: renders even when a step fails (marked), exit 1 then.
-pub fn document(file: &Path, out: Option<&Path>, latex: bool, opts: &ParseOptions) -> u8 {
+/// A folder gives one book of all its files.
+pub fn document(
+    file: &Path,
+    (out, title): (Option<&Path>, Option<&str>),
+    latex: bool,
+    opts: &ParseOptions,
+) -> u8 {
     let options = rigor::check::Options {
         parse: *opts,
         ..rigor::check::Options::default()
     };
     let mut reports = rigor::files::check_paths(&[file.to_path_buf()], &options);
+    if file.is_dir() {
+        return match rigor::files::in_book_order(file, reports) {
+            Ok(reports) => book(&reports, (out, title), latex),
+            Err(e) => {
+                errln!("error: {e}");
+                2
+            }
+        };
+    }
     if reports.len() != 1 {
         errln!("error: {} is not one derivation file", file.display());
         return 2;
@@ -403,6 +419,41 @@ pub fn document(file: &Path, out: Option<&Path>, latex: bool, opts: &ParseOption
     if report.input_error {
         2
     } else if report.ok() {
+        0
+    } else {
+        1
+    }
+}
+
+/// A book of several files (already in order): written like one document; the exit
+/// status of the worst file.
+fn book(reports: &[FileReport], (out, title): (Option<&Path>, Option<&str>), latex: bool) -> u8 {
+    let title = title.unwrap_or("Worked solutions");
+    let text = if latex {
+        rigor::render::latex::book(reports, title)
+    } else {
+        rigor::render::markdown::book(reports, title)
+    };
+    let written = match out {
+        None => {
+            out!("{text}");
+            Ok(())
+        }
+        Some(path) => write_atomically(path, &text),
+    };
+    if let Err(e) = written {
+        errln!(
+            "error: cannot write {}: {e}",
+            out.map_or_else(String::new, |p| p.display().to_string())
+        );
+        return 2;
+    }
+    for r in reports.iter().filter(|r| !r.ok()) {
+        err!("{}", rigor::render::human::report(r, false));
+    }
+    if reports.iter().any(|r| r.input_error) {
+        2
+    } else if reports.iter().all(FileReport::ok) {
         0
     } else {
         1

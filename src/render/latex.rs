@@ -35,7 +35,35 @@ pub fn document(report: &FileReport) -> String {
     ));
     for block in &solution.blocks {
         out.push('\n');
-        block_latex(block, &mut out);
+        block_latex(block, false, &mut out);
+    }
+    out.push_str("\n\\end{document}\n");
+    out
+}
+
+/// Several checked files as one book: a title page, a table of contents, and one
+/// numbered section per file in the order given. Equations are numbered by section
+/// (`3.2`), and a `use` of another file of the book refers to its section and
+/// equations.
+pub fn book(reports: &[FileReport], title: &str) -> String {
+    let files = super::solution::book_numbers(reports);
+    let mut out = String::from(PREAMBLE);
+    out.push_str(&format!(
+        "\\title{{{}}}\n\\author{{}}\n\\date{{}}\n\\begin{{document}}\n\\maketitle\n\\thispagestyle{{empty}}\n\\tableofcontents\n\\clearpage\n",
+        inlines(&super::solution::rich(title))
+    ));
+    for (k, report) in reports.iter().enumerate() {
+        let place = super::solution::Place {
+            section: k + 1,
+            files: &files,
+        };
+        let solution = super::solution::build_in(report, &place);
+        let heading = inlines(&super::solution::rich(&solution.title));
+        out.push_str(&format!("\n\\section{{{heading}}}\n"));
+        for block in &solution.blocks {
+            out.push('\n');
+            block_latex(block, true, &mut out);
+        }
     }
     out.push_str("\n\\end{document}\n");
     out
@@ -65,13 +93,15 @@ fn inlines(parts: &[Inline]) -> String {
     out
 }
 
-fn block_latex(block: &Block, out: &mut String) {
+/// One block; in a book (`in_book`) each file is a section, so headings go one down.
+fn block_latex(block: &Block, in_book: bool, out: &mut String) {
     match block {
         Block::Heading(level, t) => {
-            let cmd = match level {
+            let cmd = match level + usize::from(in_book) {
                 0..=2 => "section",
                 3 => "subsection",
-                _ => "subsubsection",
+                4 => "subsubsection",
+                _ => "paragraph",
             };
             out.push_str(&format!(
                 "\\{cmd}*{{{}}}\n",

@@ -16,7 +16,45 @@ pub fn document(report: &FileReport) -> String {
     let mut out = format!("# {}\n", inlines(&super::solution::rich(&solution.title)));
     for block in &solution.blocks {
         out.push('\n');
-        block_markdown(block, &mut out);
+        block_markdown(block, false, &mut out);
+    }
+    out
+}
+
+/// Several checked files as one document: the title, a numbered list of contents, and
+/// one numbered section per file (`## 3. Title`), equations numbered by section (`3.2`)
+/// and a `use` of another file of the book a reference to its section and equations.
+pub fn book(reports: &[FileReport], title: &str) -> String {
+    let files = super::solution::book_numbers(reports);
+    let solutions: Vec<_> = reports
+        .iter()
+        .enumerate()
+        .map(|(k, r)| {
+            let place = super::solution::Place {
+                section: k + 1,
+                files: &files,
+            };
+            super::solution::build_in(r, &place)
+        })
+        .collect();
+    let mut out = format!("# {}\n\n", inlines(&super::solution::rich(title)));
+    for (k, s) in solutions.iter().enumerate() {
+        out.push_str(&format!(
+            "{}. {}\n",
+            k + 1,
+            inlines(&super::solution::rich(&s.title))
+        ));
+    }
+    for (k, s) in solutions.iter().enumerate() {
+        out.push_str(&format!(
+            "\n## {}. {}\n",
+            k + 1,
+            inlines(&super::solution::rich(&s.title))
+        ));
+        for block in &s.blocks {
+            out.push('\n');
+            block_markdown(block, true, &mut out);
+        }
     }
     out
 }
@@ -36,10 +74,11 @@ fn inlines(parts: &[Inline]) -> String {
     line
 }
 
-fn block_markdown(block: &Block, out: &mut String) {
+/// One block; in a book (`in_book`) each file is a section, so headings go one down.
+fn block_markdown(block: &Block, in_book: bool, out: &mut String) {
     match block {
         Block::Heading(level, t) => {
-            let level = (*level).clamp(2, 6);
+            let level = (*level + usize::from(in_book)).clamp(2 + usize::from(in_book), 6);
             out.push_str(&format!(
                 "{} {}\n",
                 "#".repeat(level),

@@ -153,11 +153,7 @@ pub(crate) fn rich(t: &str) -> Vec<Inline> {
 
 /// The worked solution of a report.
 pub(crate) fn build(report: &FileReport) -> Solution {
-    let file_name = std::path::Path::new(&report.path)
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .filter(|n| !n.is_empty())
-        .unwrap_or_else(|| "Worked solution".to_string());
+    let file_name = file_title(report);
     let Some(ast) = &report.ast else {
         let mut blocks = vec![Block::Paragraph(vec![
             Inline::Text("The file ".into()),
@@ -180,6 +176,15 @@ pub(crate) fn build(report: &FileReport) -> Solution {
     Builder::new(report, ast).run(file_name)
 }
 
+/// The title of a file without a `#` title: its name.
+fn file_title(report: &FileReport) -> String {
+    std::path::Path::new(&report.path)
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .filter(|n| !n.is_empty())
+        .unwrap_or_else(|| "Worked solution".to_string())
+}
+
 /// Walks the file, keeping track of which diagnostics were shown.
 struct Builder<'a> {
     report: &'a FileReport,
@@ -192,41 +197,134 @@ struct Builder<'a> {
     numbers: std::collections::HashMap<String, usize>,
     /// The unknowns, for the "Find" line.
     find: Vec<String>,
+    /// Where the file sits in a book, if it is one section of several.
+    place: Option<&'a Place<'a>>,
+}
+
+/// Equation numbers of a file's labelled givens, constraints and claims, in document
+/// order (1, 2, …).
+pub(crate) fn numbers_of(ast: &File) -> Numbers {
+    let mut numbers = Numbers::new();
+    for item in &ast.items {
+        if let Item::Stmt(st) = item {
+            let label = match &st.kind {
+                StmtKind::Given { label, .. }
+                | StmtKind::Constraint { label, .. }
+                | StmtKind::Claim { label, .. } => label.as_ref(),
+                _ => None,
+            };
+            if let Some(l) = label {
+                let next = numbers.len() + 1;
+                numbers.entry(l.name.clone()).or_insert(next);
+            }
+        }
+    }
+    numbers
+}
+
+/// Label → equation number.
+pub(crate) type Numbers = std::collections::HashMap<String, usize>;
+
+/// Where a file sits in a book of several: its section number, and every file's
+/// section and equation numbers by path (as in [`FileReport::path`]), so that equations
+/// are numbered `3.2` and a `use` of another file of the book becomes a reference to
+/// its section and equations.
+pub(crate) struct Place<'b> {
+    /// The file's section (1-based).
+    pub section: usize,
+    /// Path → (section, numbers) of every file of the book.
+    pub files: &'b std::collections::HashMap<String, (usize, Numbers)>,
+}
+
+/// Every readable file's section and equation numbers, by path.
+pub(crate) fn book_numbers(
+    reports: &[FileReport],
+) -> std::collections::HashMap<String, (usize, Numbers)> {
+    reports
+        .iter()
+        .enumerate()
+        .filter_map(|(k, r)| Some((r.path.clone(), (k + 1, numbers_of(r.ast.as_ref()?)))))
+        .collect()
+}
+
+/// The worked solution of a report as one section of a book.
+pub(crate) fn build_in(report: &FileReport, place: &Place<'_>) -> Solution {
+    match &report.ast {
+        Some(ast) => {
+            let mut b = Builder::new(report, ast);
+            b.place = Some(place);
+            b.run(file_title(report))
+        }
+        None => build(report),
+    }
+}
+
+/// `dir/a.deriv` and `../b/c.deriv` → `b/c.deriv` (lexically; `None` above the root).
+fn joined(base: &str, rel: &str) -> Option<String> {
+    let dir = std::path::Path::new(base)
+        .parent()
+        .map(|p| p.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let mut parts: Vec<&str> = Vec::new();
+    for p in dir.split('/').chain(rel.split('/')) {
+        match p {
+            "" | "." => {}
+            ".." => {
+                parts.pop()?;
+            }
+            p => parts.push(p),
+        }
+    }
+    Some(parts.join("/"))
 }
 
 impl<'a> Builder<'a> {
     fn new(report: &'a FileReport, ast: &'a File) -> Builder<'a> {
-        let mut numbers = std::collections::HashMap::new();
-        for item in &ast.items {
-            if let Item::Stmt(st) = item {
-                let label = match &st.kind {
-                    StmtKind::Given { label, .. }
-                    | StmtKind::Constraint { label, .. }
-                    | StmtKind::Claim { label, .. } => label.as_ref(),
-                    _ => None,
-                };
-                if let Some(l) = label {
-                    let next = numbers.len() + 1;
-                    numbers.entry(l.name.clone()).or_insert(next);
-                }
-            }
-        }
         Builder {
             report,
             ast,
             ctx: Ctx::from_file(ast),
             shown: vec![false; report.diagnostics.len()],
             blocks: Vec::new(),
-            numbers,
+            numbers: numbers_of(ast),
             find: Vec::new(),
+            place: None,
         }
     }
 
-    /// A label as the output shows it: its equation number, or (imported) its name.
+    /// A label as the output shows it: its equation number (`3.2` in a book), or
+    /// (imported) its name.
     fn number(&self, label: &str) -> String {
+        let prefix = self
+            .place
+            .map_or_else(String::new, |p| format!("{}.", p.section));
         self.numbers
             .get(label)
-            .map_or_else(|| label.to_string(), |n| n.to_string())
+            .map_or_else(|| label.to_string(), |n| format!("{prefix}{n}"))
+    }
+
+    /// `From Section 2 we use (2.3)` for a `use` of another file of the book.
+    fn cross_reference(&self, path: &str, labels: &[Label]) -> Option<Vec<Inline>> {
+        let place = self.place?;
+        let norm = |p: &str| joined("", p);
+        let target = joined(&self.report.path, path)?;
+        let (section, numbers) = place
+            .files
+            .iter()
+            .find(|(k, _)| norm(k).as_deref() == Some(target.as_str()))
+            .map(|(_, v)| v)?;
+        let list: Vec<String> = labels
+            .iter()
+            .map(|l| {
+                numbers
+                    .get(&l.name)
+                    .map_or_else(|| format!("({})", l.name), |n| format!("({section}.{n})"))
+            })
+            .collect();
+        Some(vec![Inline::Text(format!(
+            "From Section {section} we use {}",
+            list.join(", ")
+        ))])
     }
 
     fn run(mut self, file_name: String) -> Solution {
@@ -561,11 +659,13 @@ impl<'a> Builder<'a> {
             StmtKind::Use {
                 labels, path, with, ..
             } => {
-                let mut p = vec![
-                    Inline::Text("From ".into()),
-                    Inline::Code(path.clone()),
-                    Inline::Text(format!(" we use {}", label_list(labels))),
-                ];
+                let mut p = self.cross_reference(path, labels).unwrap_or_else(|| {
+                    vec![
+                        Inline::Text("From ".into()),
+                        Inline::Code(path.clone()),
+                        Inline::Text(format!(" we use {}", label_list(labels))),
+                    ]
+                });
                 if !with.is_empty() {
                     p.push(Inline::Text(" with ".into()));
                     p.push(Inline::Math(assignments(with, ctx)));

@@ -509,7 +509,9 @@ fn deep_expression_compiles() {
         ast: Some(ast),
         ..Default::default()
     };
-    compile("deep", &latex::document(&r));
+    // Sixty levels of nesting cannot fit on a line: this test is about TeX's capacity
+    // (nesting, grouping), not layout, so the width is not checked.
+    pdflatex("deep", &latex::document(&r));
 }
 
 #[test]
@@ -543,12 +545,24 @@ fn every_derivation_compiles() {
     }
 }
 
-/// Compiles `tex` with pdflatex in a fresh temporary folder and asserts success.
-/// Without pdflatex the test fails, unless `RIGOR_SKIP_PDFLATEX=1`.
+/// Compiles `tex` with pdflatex and asserts success, and that no line is overfull by
+/// more than 10 pt.
 fn compile(name: &str, tex: &str) {
+    let log = pdflatex(name, tex);
+    let worst = overfull(&log);
+    assert!(
+        worst <= 10.0,
+        "{name}: a line is {worst} pt too wide:\n{log}\n--- document ---\n{tex}"
+    );
+}
+
+/// Compiles `tex` with pdflatex in a fresh temporary folder, asserts success and
+/// returns the log. Without pdflatex the test fails, unless `RIGOR_SKIP_PDFLATEX=1`
+/// (then the log is empty).
+fn pdflatex(name: &str, tex: &str) -> String {
     if Command::new("pdflatex").arg("--version").output().is_err() {
         if std::env::var("RIGOR_SKIP_PDFLATEX").is_ok_and(|v| v == "1") {
-            return;
+            return String::new();
         }
         panic!("pdflatex is not on PATH: install TeX Live or set RIGOR_SKIP_PDFLATEX=1");
     }
@@ -572,12 +586,98 @@ fn compile(name: &str, tex: &str) {
         ok,
         "pdflatex failed on {name}:\n{log}\n--- document ---\n{tex}"
     );
+    log
+}
+
+/// The widest `Overfull \hbox (X pt too wide)` of a pdflatex log, in pt (0 if none).
+fn overfull(log: &str) -> f64 {
+    log.split("Overfull \\hbox (")
+        .skip(1)
+        .filter_map(|rest| rest.split("pt too wide").next()?.trim().parse::<f64>().ok())
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn overfull_lines_are_measured() {
+    let log = "Overfull \\hbox (3.2pt too wide) in paragraph\nOverfull \\hbox (720.5pt too wide) detected";
+    assert_eq!(overfull(log), 720.5);
+    assert_eq!(overfull("Underfull \\hbox (badness 10000)"), 0.0);
+}
+
+#[test]
+fn a_folder_is_one_book_in_its_order_with_cross_references() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/book");
+    let reports = crate::files::check_paths(
+        std::slice::from_ref(&dir),
+        &crate::check::Options::default(),
+    );
+    let reports = crate::files::in_book_order(&dir, reports).expect("ORDER");
+    let names: Vec<_> = reports
+        .iter()
+        .map(|r| {
+            Path::new(&r.path)
+                .file_name()
+                .unwrap()
+                .to_string_lossy()
+                .into_owned()
+        })
+        .collect();
+    // ORDER lists end.deriv first; unlisted files follow in path order.
+    assert_eq!(names, ["end.deriv", "centre.deriv", "extra.deriv"]);
+    let tex = latex::book(&reports, "Rods & $m$");
+    assert!(tex.contains("\\title{Rods \\& $m$}"), "{tex}");
+    assert!(tex.contains("\\tableofcontents"), "{tex}");
+    let sections: Vec<_> = tex
+        .lines()
+        .filter(|l| l.starts_with("\\section{"))
+        .collect();
+    assert_eq!(
+        sections,
+        [
+            "\\section{The rod about its end}",
+            "\\section{The rod about its centre}",
+            "\\section{An extra}"
+        ]
+    );
+    // Equations are numbered by section; the import is a cross-reference.
+    assert!(tex.contains("\\tag{2.1}"), "{tex}");
+    assert!(tex.contains("From Section 2 we use (2.1)"), "{tex}");
+    assert!(tex.contains("\\text{by (1.1)}"), "{tex}");
+    assert!(
+        !tex.contains("IG") && !tex.contains("centre.deriv"),
+        "{tex}"
+    );
+    compile("book", &tex);
+    let md = markdown::book(&reports, "Rods");
+    assert!(
+        md.starts_with("# Rods\n\n1. The rod about its end\n2. The rod about its centre\n3. An extra\n\n## 1. The rod about its end\n"),
+        "{md}"
+    );
+    assert!(md.contains("From Section 2 we use (2.1)"), "{md}");
+    // The whole handout as a book compiles, nothing overfull.
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("derivations");
+    let reports = crate::files::check_paths(
+        std::slice::from_ref(&dir),
+        &crate::check::Options::default(),
+    );
+    let reports = crate::files::in_book_order(&dir, reports).expect("derivations/ORDER");
+    assert!(reports.iter().all(|r| r.ok()));
+    assert!(
+        reports[0].path.ends_with("rod.deriv"),
+        "{}",
+        reports[0].path
+    );
+    compile("handout-book", &latex::book(&reports, "Handout 5"));
 }
 
 #[test]
 fn checked_documents_compile() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let paths = vec![root.join("derivations"), root.join("tests/check/fail")];
+    let paths = vec![
+        root.join("derivations"),
+        root.join("tests/check/fail"),
+        root.join("tests/check/pass"),
+    ];
     let reports = crate::files::check_paths(&paths, &crate::check::Options::default());
     assert!(!reports.is_empty());
     let mut all = String::new();

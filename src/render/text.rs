@@ -141,9 +141,21 @@ pub(crate) fn latex_text(s: &str) -> String {
 pub(crate) fn latex_lines(s: &str) -> String {
     let mut out = String::from("{\\small\\ttfamily\\raggedright\n");
     for line in s.lines() {
-        let escaped = latex_text(line).replace(' ', "~");
         out.push_str("\\noindent\\mbox{}");
-        out.push_str(&escaped);
+        // Spaces keep their width (carets stay under what they point at) but a line too
+        // long for the page may break after one, or inside a long run without spaces.
+        for (k, word) in line.split(' ').enumerate() {
+            if k > 0 {
+                out.push_str("~\\allowbreak{}");
+            }
+            let chars: Vec<char> = word.chars().collect();
+            for (j, piece) in chars.chunks(40).enumerate() {
+                if j > 0 {
+                    out.push_str("\\allowbreak{}");
+                }
+                out.push_str(&latex_text(&piece.iter().collect::<String>()));
+            }
+        }
         out.push_str("\\par\n");
     }
     out.push_str("}\n");

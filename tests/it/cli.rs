@@ -614,3 +614,33 @@ fn json_gives_each_link_its_units_when_units_are_declared() {
         .collect();
     assert!(units.iter().any(|u| u == "kg·m²"), "{units:?}");
 }
+
+#[test]
+fn a_folder_becomes_one_book() {
+    let r = run(&["latex", "tests/data/book", "--title", "Rods"]);
+    expect_code(&r, 0, "latex book");
+    assert!(r.stdout.contains("\\title{Rods}"), "{}", r.stdout);
+    assert!(r.stdout.contains("\\tableofcontents"), "{}", r.stdout);
+    assert_eq!(r.stdout.matches("\\section{").count(), 3, "{}", r.stdout);
+    let r = run(&["markdown", "tests/data/book"]);
+    expect_code(&r, 0, "markdown book");
+    assert!(
+        r.stdout.starts_with("# Worked solutions\n\n1. "),
+        "{}",
+        r.stdout
+    );
+    // An ORDER that names a file the folder does not have is bad input.
+    let dir = std::env::temp_dir().join(format!("rigor-book-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("a.deriv"), "symbols a > 0\nclaim a = a\n").unwrap();
+    std::fs::write(dir.join("ORDER"), "a.deriv\nmissing.deriv\n").unwrap();
+    let r = run(&["latex", dir.to_str().unwrap()]);
+    let _ = std::fs::remove_dir_all(&dir);
+    expect_code(&r, 2, "latex book, bad ORDER");
+    assert!(
+        r.stderr
+            .contains("ORDER:2: `missing.deriv` is not a `.deriv` file of the folder"),
+        "{}",
+        r.stderr
+    );
+}

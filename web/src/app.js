@@ -114,7 +114,7 @@ function scheduleCheck() {
     keepInUrl();
     check();
   }, DEBOUNCE_MS);
-  renderGutter(lineCount(source.value), new Map());
+  renderGutter(lineCount(source.value), null);
 }
 
 // ---- showing an answer ----
@@ -142,14 +142,19 @@ const WORDS = {
   error: "could not be checked",
 };
 
+// One row per line, kept between checks (a long file is not rebuilt per keystroke);
+// only the marks change. `marks` null: the text changed and is not checked yet.
 function renderGutter(lines, marks) {
-  clear(gutter);
-  for (let n = 1; n <= lines; n++) {
-    const row = el("div", { class: "ln" }, el("span", { class: "num" }, String(n)));
-    const m = el("span", { class: "marks" });
-    for (const mark of marks.get(n) || []) m.append(mark);
-    row.append(m);
-    gutter.append(row);
+  while (gutter.children.length > lines) gutter.lastChild.remove();
+  for (let n = gutter.children.length + 1; n <= lines; n++) {
+    gutter.append(el("div", { class: "ln" }, el("span", { class: "num" }, String(n)), el("span", { class: "marks" })));
+  }
+  gutter.dataset.stale = String(marks === null);
+  if (marks === null) return; // typing: the last verdicts stay, dimmed, until the next
+  for (const row of gutter.querySelectorAll(".marks:not(:empty)")) clear(row);
+  for (const [n, list] of marks) {
+    const row = gutter.children[n - 1];
+    if (row) for (const mark of list) row.lastChild.append(mark);
   }
   gutter.scrollTop = source.scrollTop;
 }
