@@ -1,5 +1,6 @@
 //! rigor's integration tests: one binary, one module per feature.
 
+mod action;
 mod calculus;
 mod check;
 mod cli;
