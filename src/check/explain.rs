@@ -77,6 +77,9 @@ impl Checker<'_, '_> {
                 });
             }
         }
+        if let Some(d) = self.determined_symbol(red, &tied, span, deadline) {
+            return Err(d);
+        }
         let Some((target, _, left)) = elim(&red.scope, true) else {
             return Ok(None);
         };
@@ -95,6 +98,60 @@ impl Checker<'_, '_> {
                 ),
             ],
         ))
+    }
+
+    /// A symbol declared with `symbols` (a parameter) that the facts determine, and with
+    /// which as an unknown the step follows: "the facts determine F (F = … from [Fx],
+    /// [MG]); declare it with `unknowns F`". The first such symbol, if any.
+    fn determined_symbol(
+        &self,
+        red: &Reduced,
+        tied: &[AtomId],
+        span: Span,
+        deadline: Option<Deadline>,
+    ) -> Option<Diagnostic> {
+        let signs = &self.env.signs;
+        // Quantities declared without a sign (forces, reactions) before those with one
+        // (masses, lengths), which the facts determine only in a formal sense.
+        let mut order: Vec<AtomId> = tied.to_vec();
+        order.sort_by_key(|&a| signs.declared(a) != crate::normal::Sign::Unknown);
+        for x in order {
+            let Some(name) = atom::sym_name(x) else {
+                continue;
+            };
+            let is_unknown = |a: AtomId| a == x || unknown_atom(&self.scope, a);
+            let elim = |target: &Rat| {
+                super::solve::eliminate_all(target, &red.scope, &is_unknown, signs, deadline, false)
+                    .ok()
+            };
+            let Some((rest, _, _)) = elim(&red.diff) else {
+                continue;
+            };
+            if !rest.is_zero() {
+                continue;
+            }
+            // Its value from the facts, if they give it in terms of the parameters.
+            let value = elim(&Rat::atom(x)).and_then(|(v, steps, _)| {
+                let free = !v.atoms().iter().any(|a| is_unknown(*a));
+                let mut from: Vec<String> = steps.iter().map(|s| s.fact.clone()).collect();
+                from.dedup();
+                free.then(|| format!(" ({name} = {} from {})", short(&plain(&v)), from.join(", ")))
+            });
+            let mut d = Diagnostic::error(
+                "E0302",
+                format!(
+                    "not verified: the facts determine {name}{}, but `{name}` is declared with `symbols`, as a given quantity",
+                    value.unwrap_or_default()
+                ),
+                span,
+                format!("with `unknowns {name}` this step follows"),
+            );
+            d.notes.push(format!(
+                "declare it with `unknowns {name}` (keeping `symbols {name}` for its sign, if it has one) so that rigor solves for it"
+            ));
+            return Some(d);
+        }
+        None
     }
 
     /// The diagnostic of an `=` link that does not verify. `sides`: the sides reduced

@@ -167,7 +167,10 @@ fn root_poly(p: &Poly, n: u32, s: &Assumptions) -> Result<Rat, NormError> {
             out = out.mul(&f)?;
         }
         if e % n > 0 {
-            inside.push((a, e % n));
+            match split_root(a, e % n, n, s)? {
+                Some(f) => out = out.mul(&f)?,
+                None => inside.push((a, e % n)),
+            }
         }
     }
     let inside = Mono::from_pairs(inside).ok_or(Limit::Exponent)?;
@@ -193,6 +196,32 @@ fn root_poly(p: &Poly, n: u32, s: &Assumptions) -> Result<Rat, NormError> {
         }
     }
     out.mul(&Rat::atom(root_atom(radicand, n)))
+}
+
+/// The `n`-th root of `a^e` (`0 < e < n`) as a factor of its own, where that is an
+/// identity wherever both sides are defined: a root of a root is one root
+/// (`sqrt(sqrt(x)) = x^(1/4)`), an odd root is multiplicative, and an even root of a
+/// product splits off the factors the signs show nonnegative (`sqrt(a b) = sqrt(a)
+/// sqrt(b)` for `a, b >= 0`). `None`: it stays inside the radicand.
+fn split_root(a: atom::AtomId, e: u32, n: u32, s: &Assumptions) -> Result<Option<Rat>, NormError> {
+    let inner = match &*atom::get(a) {
+        Atom::Sqrt(p) => Some((p.clone(), 2)),
+        Atom::Root(p, m) => Some((p.clone(), *m)),
+        _ => None,
+    };
+    if let Some((p, m)) = inner {
+        // root_n(root_m(p)^e) = root_nm(p^e): both need p >= 0 when either index is
+        // even (and root_m(p)^e >= 0), and agree there; for odd indices, everywhere.
+        if n * m <= 64 {
+            let radicand = Rat::poly(p)?.powi(i64::from(e))?;
+            return root(&radicand, n * m, s).map(Some);
+        }
+    }
+    if n % 2 == 1 || matches!(s.atom(a), Sign::Pos | Sign::NonNeg) {
+        let p = Poly::atom(a).pow(u64::from(e))?;
+        return Ok(Some(Rat::atom(root_atom(p, n))));
+    }
+    Ok(None)
 }
 
 /// `u` when `p` is `1 − sin(u)²`.
@@ -363,41 +392,51 @@ pub fn ln(u: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
     if let Some(q) = u.as_constant() {
         return ln_rational(&q);
     }
+    // ln(P·L) = ln(P) + ln(L) where P·L > 0 and P > 0. P collects what is positive
+    // (the constant's size, atoms and factors the signs show positive) and even powers,
+    // as |a|^(2k) = a^(2k) (`ln(x^2) = 2 ln(abs(x))`); the rest, L, stays one logarithm.
+    // Nothing is replaced by its absolute value where the two differ, so exp(ln(x)) is
+    // still x.
     let mut out = Rat::zero();
-    let mut leftover_num = Poly::one();
-    let mut leftover_den = Poly::one();
-    for (p, sgn) in [(u.num(), 1i64), (u.den(), -1i64)] {
+    let mut leftover = [Poly::one(), Poly::one()];
+    for (k, (p, sgn)) in [(u.num(), 1i64), (u.den(), -1i64)].into_iter().enumerate() {
         if p.is_one() {
             continue;
         }
+        let scale = |r: Rat, m: i64| r.scale(&Q::from_integer(BigInt::from(sgn * m)));
         let c = p.content();
-        let neg = p.lead().is_some_and(|t| t.1.is_negative());
-        let prim = p.primitive();
+        out = out.add(&scale(ln_rational(&c.abs())?, 1))?;
+        let mut left = Poly::constant(if c.is_negative() { -Q::one() } else { Q::one() });
+        let prim = p
+            .scale(&c.recip())
+            .scale(&if c.is_negative() { -Q::one() } else { Q::one() });
         let mc = prim.mono_content();
         let rest = prim.div_mono(&mc).unwrap_or(prim.clone());
-        let positive_rest = rest.is_one() || s.poly(&rest) == Sign::Pos;
-        let all_pos = mc.pairs().iter().all(|&(a, _)| s.atom(a) == Sign::Pos);
-        if all_pos && positive_rest && !neg {
-            out = out.add(&ln_rational(&c)?.scale(&Q::from_integer(sgn.into())))?;
-            for &(a, e) in mc.pairs() {
-                let term = match &*atom::get(a) {
-                    Atom::Exp(v) => v.clone(),
-                    _ => Rat::atom(atom::intern(Atom::Ln(Rat::atom(a)))),
-                };
-                out = out.add(&term.scale(&Q::from_integer((sgn * i64::from(e)).into())))?;
+        for &(a, e) in mc.pairs() {
+            let ar = Rat::atom(a);
+            if s.atom(a) == Sign::Pos {
+                out = out.add(&scale(ln_abs(&ar, s)?, i64::from(e)))?;
+                continue;
             }
-            if !rest.is_one() {
-                let l = Rat::atom(atom::intern(Atom::Ln(Rat::poly(rest)?)));
-                out = out.add(&l.scale(&Q::from_integer(sgn.into())))?;
+            if e >= 2 {
+                out = out.add(&scale(ln_abs(&ar, s)?, i64::from(e - e % 2)))?;
             }
-        } else if sgn == 1 {
-            leftover_num = p.clone();
-        } else {
-            leftover_den = p.clone();
+            if e % 2 == 1 {
+                left = left.mul(&Poly::atom(a))?;
+            }
         }
+        if !rest.is_one() {
+            if s.poly(&rest) == Sign::Pos {
+                out = out.add(&scale(ln_abs(&Rat::poly(rest)?, s)?, 1))?;
+            } else {
+                left = left.mul(&rest)?;
+            }
+        }
+        leftover[k] = left;
     }
-    if !(leftover_num.is_one() && leftover_den.is_one()) {
-        let v = Rat::new(leftover_num, leftover_den)?;
+    let [num, den] = leftover;
+    if !(num.is_one() && den.is_one()) {
+        let v = Rat::new(num, den)?;
         let l = match v.as_atom().map(atom::get) {
             Some(a) => match &*a {
                 Atom::Exp(w) => w.clone(),
@@ -408,6 +447,18 @@ pub fn ln(u: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
         out = out.add(&l)?;
     }
     Ok(out)
+}
+
+/// `ln(abs(v))` for an atom or a primitive polynomial `v`, one atom: `ln(v)` where the
+/// signs show `v > 0`, `ln(-v)` where `v < 0`, otherwise `ln(abs(v))`; `ln(exp(w)) = w`.
+fn ln_abs(v: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
+    if let Some(a) = v.as_atom() {
+        if let Atom::Exp(w) = &*atom::get(a) {
+            return Ok(w.clone());
+        }
+    }
+    let arg = abs(v, s)?;
+    Ok(Rat::atom(atom::intern(Atom::Ln(arg))))
 }
 
 /// `ln(q)` for a positive rational: a sum over its prime factors.

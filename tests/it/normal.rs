@@ -285,10 +285,27 @@ fn exponentials_and_logarithms() {
     check("exp(ln(x))", "", "x");
     check("ln(exp(x))", "", "x");
     same("ln(8)", "3 ln(2)", "");
-    // ln(a b) splits only when both factors are known positive.
+    // ln(a b) splits off the factors known positive: with a > 0 it is defined only
+    // where b > 0 too, and then it is ln(a) + ln(b). Without signs it stays whole.
     check("ln(a b)", "", "ln(a b)");
     differ("ln(a b)", "ln(a) + ln(b)", "");
-    differ("ln(a b)", "ln(a) + ln(b)", "a > 0");
+    same("ln(a b)", "ln(a) + ln(b)", "a > 0");
+    // Even powers: |x|^2 = x^2, so ln(x^2) = 2 ln(abs(x)) everywhere it is defined,
+    // and exp undoes it exactly.
+    same("ln(x^2)", "2 ln(abs(x))", "");
+    same("ln(x^2)", "2 ln(x)", "x > 0");
+    same("exp(ln(x^2))", "x^2", "");
+    check("ln(x^3 y^2)", "", "ln(x) + 2 ln(abs(x)) + 2 ln(abs(y))");
+    // Roots of roots and of products under signs.
+    same("x^(1/4)", "sqrt(sqrt(x))", "");
+    same("sqrt(a b)", "sqrt(a) sqrt(b)", "a > 0 ; b > 0");
+    same("(a b)^(1/3)", "a^(1/3) b^(1/3)", "");
+    differ("sqrt(a b)", "sqrt(a) sqrt(b)", "");
+    check(
+        "sqrt(8 m g h)",
+        "m > 0 ; g > 0",
+        "2 sqrt(2) sqrt(g) sqrt(h) sqrt(m)",
+    );
     same("ln(a b)", "ln(a) + ln(b)", "a > 0 ; b > 0");
     same("ln(a/b)", "ln(a) - ln(b)", "a b > 0");
 }
