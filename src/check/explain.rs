@@ -154,6 +154,54 @@ impl Checker<'_, '_> {
         None
     }
 
+    /// A `time` symbol (or its derivative) that no fact determines is the state of the
+    /// motion at an instant, which can be anything: when every quantity left undetermined
+    /// is such a state and no remaining fact mentions it, the sides reduced by the facts,
+    /// for the step to be refuted like one about constants rather than left "not
+    /// verified".
+    fn state_sides(&self, input: &LinkInput<'_>, red: &Reduced) -> Option<Sides> {
+        // Not when a fact the link may use failed to check: it might have fixed them.
+        let facts_complete = match input.link.by.as_ref().map(|b| &b.0) {
+            Some(crate::syntax::ast::By::Labels(ls)) => {
+                !ls.iter().any(|l| self.failed_labels.contains_key(&l.name))
+            }
+            _ => self.failed_labels.is_empty(),
+        };
+        red.elim
+            .as_ref()
+            .filter(|e| {
+                !e.stuck.is_empty()
+                    && e.stuck
+                        .iter()
+                        .all(|a| time_state(&self.scope, *a, &red.scope))
+            })
+            .filter(|_| facts_complete)
+            .and_then(|_| self.free_state_sides(red))
+    }
+
+    /// The sides reduced by every fact in scope, when no fact left after the
+    /// elimination mentions any quantity of their difference (so the `time` symbols
+    /// left in it are free at an instant).
+    fn free_state_sides(&self, red: &Reduced) -> Option<Sides> {
+        let signs = &self.env.signs;
+        let is_unknown = |x: AtomId| unknown_atom(&self.scope, x);
+        let (target, steps, left) =
+            super::solve::eliminate_all(&red.diff, &red.scope, &is_unknown, signs, None, false)
+                .ok()?;
+        // Facts left over constrain nothing that an unknown absent from the difference
+        // can absorb (`M = -m g d sin(theta)` only says what M is); any other quantity
+        // they constrain must be absent from the difference.
+        let depends = |r: &Rat, a: AtomId| crate::normal::subst::depends_on(r, a);
+        let absorbs = |u: AtomId| is_unknown(u) && !depends(&target, u);
+        let constrained = super::solve::constrained_atoms(&left, &absorbs, signs);
+        if constrained.iter().any(|c| depends(&target, *c)) {
+            return None;
+        }
+        let a = apply_steps(&red.a, &steps, signs).ok()?;
+        let b = apply_steps(&red.b, &steps, signs).ok()?;
+        Some((a, b, steps))
+    }
+
     /// The diagnostic of an `=` link that does not verify. `sides`: the sides reduced
     /// by every fact in scope, when a refutation may be tried on them.
     pub(super) fn not_equal(
@@ -164,7 +212,9 @@ impl Checker<'_, '_> {
         defined: &[Condition],
     ) -> Diagnostic {
         let span = input.span;
-        let (ra, rb, steps) = sides.unwrap_or_else(|| {
+        let state = self.state_sides(input, red);
+        let free_state = state.is_some();
+        let (ra, rb, steps) = state.or(sides).unwrap_or_else(|| {
             let steps = red.elim.as_ref().map_or_else(Vec::new, |e| e.steps.clone());
             (red.ra.clone(), red.rb.clone(), steps)
         });
@@ -173,20 +223,7 @@ impl Checker<'_, '_> {
         } else {
             format!(" (after using {})", cite(&red.via))
         };
-        let mut notes = vec![
-            format!("left side:  {}", short(&plain(&red.a))),
-            format!("right side: {}", short(&plain(&red.b))),
-        ];
-        if !red.via.is_empty() {
-            notes.push(
-                format!(
-                    "with the facts{using}: left {} , right {}",
-                    plain(&ra),
-                    plain(&rb)
-                )
-                .replace(" ,", ","),
-            );
-        }
+        let notes = side_notes(red, (&ra, &rb), &using);
         let with_notes = |mut d: Diagnostic, extra: Vec<String>| {
             d.notes = notes.iter().cloned().chain(extra).collect();
             d
@@ -200,7 +237,11 @@ impl Checker<'_, '_> {
             );
             return with_notes(d, Vec::new());
         }
-        if let Some(e) = red.elim.as_ref().filter(|e| !e.stuck.is_empty()) {
+        if let Some(e) = red
+            .elim
+            .as_ref()
+            .filter(|e| !e.stuck.is_empty() && !free_state)
+        {
             let (mut d, mut extra) = self.undetermined(&e.stuck, &e.target, (&ra, &rb), span);
             // One term that, changed, makes the step follow is the likelier mistake than
             // a missing fact.
@@ -328,6 +369,55 @@ impl Checker<'_, '_> {
         }
         (d, notes)
     }
+}
+
+/// Both sides as written, and (when facts were used) as the facts reduce them.
+fn side_notes(red: &Reduced, (ra, rb): (&Rat, &Rat), using: &str) -> Vec<String> {
+    let mut notes = vec![
+        format!("left side:  {}", short(&plain(&red.a))),
+        format!("right side: {}", short(&plain(&red.b))),
+    ];
+    if !red.via.is_empty() {
+        notes.push(
+            format!(
+                "with the facts{using}: left {} , right {}",
+                plain(ra),
+                plain(rb)
+            )
+            .replace(" ,", ","),
+        );
+    }
+    notes
+}
+
+/// A `time` symbol or one of its derivatives (not declared with `unknowns`) that is part
+/// of the state of the motion at an instant, free unless a fact ties it: a position or
+/// a velocity, or any derivative below one that a fact mentions (the equations of
+/// motion determine the highest derivatives, not the state). An acceleration that no
+/// fact goes beyond is what an equation of motion should give: a missing fact.
+fn time_state(scope: &super::scope::Scope, a: AtomId, facts: &[Fact]) -> bool {
+    let Some(name) = atom::sym_name(a) else {
+        return false;
+    };
+    let base = name.trim_end_matches('\'');
+    let order = name.len() - base.len();
+    let is_time = scope.names.get(base) == Some(&super::scope::Decl::Time)
+        && !scope.unknowns.contains(base)
+        && !scope.unknowns.contains(&name);
+    if !is_time {
+        return false;
+    }
+    let higher_in_facts = || {
+        let mut syms = Vec::new();
+        for f in facts {
+            crate::decide::symbols_in(&f.value, &mut syms);
+        }
+        syms.iter().filter_map(|s| atom::sym_name(*s)).any(|n| {
+            let b = n.trim_end_matches('\'');
+            b == base && n.len() - b.len() > order
+        })
+    };
+    order <= 1 || higher_in_facts()
 }
 
 /// "not verified: the facts in scope ([IG]) relate a, b, …".
