@@ -330,7 +330,11 @@ impl Checker<'_, '_> {
         let facts: Vec<Fact> = self.facts.iter().map(|k| k.fact.clone()).collect();
         let mut headline = format!("not verified: nothing in scope determines {}", names(stuck));
         let mut powers = Vec::new();
-        for u in stuck {
+        // (Only for quantities declared with `unknowns`: a derivative of a `time` symbol
+        // cannot be declared positive, and the state of the motion is not solved for.)
+        let declared_unknown =
+            |u: AtomId| atom::sym_name(u).is_some_and(|n| self.scope.unknowns.contains(&n));
+        for u in stuck.iter().filter(|u| declared_unknown(**u)) {
             if let Some((fact, n)) = super::solve::power_only(&facts, *u, &self.env.signs) {
                 let name = unknown_name(*u);
                 headline = format!("not verified: {fact} gives {name} only through {name}^{n}");
