@@ -105,13 +105,13 @@ fn block_markdown(block: &Block, in_book: bool, out: &mut String) {
             }
             out.push_str(&format!(
                 "$$\n{}\n$$\n",
-                display_latex(block).unwrap_or_default()
+                display_latex(block, false).unwrap_or_default()
             ));
         }
         Block::Claim { .. } => {
             out.push_str(&format!(
                 "$$\n{}\n$$\n",
-                display_latex(block).unwrap_or_default()
+                display_latex(block, false).unwrap_or_default()
             ));
         }
         Block::Problems(problems) => {
@@ -136,8 +136,18 @@ fn block_markdown(block: &Block, in_book: bool, out: &mut String) {
 }
 
 /// The LaTeX of a displayed formula or claim (what goes between `$$` and `$$`), with
-/// its note and tag; text inside is safe for MathJax and KaTeX. `None` for other blocks.
-pub(crate) fn display_latex(block: &Block) -> Option<String> {
+/// its note and equation number; text inside is safe for MathJax and KaTeX. The number
+/// is a `\tag` with `tags` (KaTeX in the playground sets it at the margin), otherwise
+/// `\qquad (n)` after the formula, which every Markdown renderer draws (GitHub's does
+/// not number with `\tag`). `None` for other blocks.
+pub(crate) fn display_latex(block: &Block, tags: bool) -> Option<String> {
+    let number = |t: &str| {
+        if tags {
+            format!(" \\tag{{{}}}", mathjax_text(t))
+        } else {
+            format!(" \\qquad\\text{{({})}}", mathjax_text(t))
+        }
+    };
     let mut out = String::new();
     match block {
         Block::Display {
@@ -148,7 +158,7 @@ pub(crate) fn display_latex(block: &Block) -> Option<String> {
                 out.push_str(&format!(" \\qquad\\text{{({})}}", mathjax_text(n)));
             }
             if let Some(t) = tag {
-                out.push_str(&format!(" \\tag{{{}}}", mathjax_text(t)));
+                out.push_str(&number(t));
             }
         }
         Block::Claim { rows, tag } => {
@@ -162,7 +172,7 @@ pub(crate) fn display_latex(block: &Block) -> Option<String> {
             }
             out.push_str("\\end{aligned}");
             if let Some(t) = tag {
-                out.push_str(&format!(" \\tag{{{}}}", mathjax_text(t)));
+                out.push_str(&number(t));
             }
         }
         _ => return None,

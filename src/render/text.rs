@@ -222,7 +222,8 @@ pub(crate) fn markdown_message(s: &str) -> String {
 
 /// User text for the `\text{…}` or `\tag{…}` of math rendered by MathJax or KaTeX,
 /// which show the inside of `\text` literally: braces, `$`, `\` and `%` (a comment
-/// in TeX input) are replaced by harmless look-alikes.
+/// in TeX input) are replaced by harmless look-alikes, as are `^` and `_` (an error in
+/// KaTeX's text mode) and `&` (an alignment tab inside `aligned`).
 pub(crate) fn mathjax_text(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
     for c in s.chars() {
@@ -233,6 +234,9 @@ pub(crate) fn mathjax_text(s: &str) -> String {
             '$' => out.push('S'),
             '%' => out.push_str(" percent"),
             '#' => out.push_str("No."),
+            '^' => out.push('\u{2c6}'),
+            '_' => out.push('\u{2cd}'),
+            '&' => out.push_str("and"),
             '\t' | '\n' | '\r' => out.push(' '),
             c if c.is_control() => {}
             c => out.push(c),

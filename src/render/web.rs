@@ -102,7 +102,7 @@ fn parts(inlines: &[Inline]) -> Vec<Value> {
 }
 
 fn block(b: &Block) -> Value {
-    let latex = super::markdown::display_latex(b);
+    let latex = super::markdown::display_latex(b, true);
     match b {
         Block::Heading(level, t) => {
             json!({ "kind": "heading", "level": level, "parts": parts(&rich(t)) })

@@ -217,6 +217,7 @@ fn a_shared_link_opens_and_is_checked_at_once() {
     assert!(preview.contains("The rod about its end"), "{preview}");
     assert!(preview.contains("not verified (line 7)"), "{preview}");
     assert!(v["elements"]["math"].as_u64().unwrap_or(0) > 3, "{v}");
+    assert_eq!(v["katexErrors"], serde_json::json!([]), "{v}");
 }
 
 #[test]
@@ -298,6 +299,8 @@ fn every_example_is_one_click_away_and_verifies() {
     assert_eq!(shown, files);
     for e in v["examples"].as_array().expect("examples") {
         assert_eq!(e[1], "ok", "{e}");
+        // Every formula of the worked solution typesets (no KaTeX error).
+        assert_eq!(e[3], serde_json::json!([]), "{e}");
         assert!(
             e[2].as_str()
                 .unwrap_or("")

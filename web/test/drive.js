@@ -7,11 +7,12 @@
 //                              [--timeout MS]
 //
 // With --examples it clicks every example button in turn, waits for its check and
-// records [name, status, summary] in "examples".
+// records [name, status, summary, [KaTeX errors in the preview]] in "examples".
 // Output: {"status": kind, "statusText", "summary", "marks": [[status, line, detail]],
 //          "diagnostics": [[severity, line, text]], "preview": text,
 //          "elements": {tag: count} (of the preview), "scriptRan": bool, "hash",
-//          "exampleNames": [name], "examples": [[name, status, summary]]}
+//          "exampleNames": [name], "katexErrors": [message],
+//          "examples": [[name, status, summary, [KaTeX error]]]}
 "use strict";
 const { spawn } = require("child_process");
 const fs = require("fs");
@@ -122,6 +123,7 @@ const SNAPSHOT = `(() => {
     scriptRan: !!window.__rigorInjected,
     hash: location.hash,
     exampleNames: q("[data-example]").map((e) => e.dataset.example),
+    katexErrors: q("#preview .katex-error").map((e) => e.title || e.textContent),
   };
 })()`;
 
@@ -155,7 +157,11 @@ const SNAPSHOT = `(() => {
       );
       const kind = await settled(sessionId, Date.now() + timeoutMs);
       const summary = await evaluate(sessionId, `document.getElementById("summary").textContent`);
-      snapshot.examples.push([name, kind, summary]);
+      const errors = await evaluate(
+        sessionId,
+        `Array.from(document.querySelectorAll("#preview .katex-error")).map((e) => e.title || e.textContent)`,
+      );
+      snapshot.examples.push([name, kind, summary, errors]);
     }
   }
   const shot = opt("--screenshot");
