@@ -236,10 +236,12 @@ fn multiple_of(target: &Rat, fact: &Rat, signs: &Assumptions) -> bool {
         .is_ok_and(|r| r.den().atoms().is_empty() || signs.poly(r.den()).is_nonzero())
 }
 
-type Pair = ((bool, usize), usize, AtomId, Solution);
+type Pair = ((bool, bool, usize), usize, AtomId, Solution);
 
 /// The best (fact, unknown) pair to solve: no division by a quantity of unknown sign if
-/// possible (only such pairs when `strict`), then the fact with fewest unknowns.
+/// possible (only such pairs when `strict`), then a fact linear in the unknown (so that
+/// `v = R omega` is substituted before `v` is taken as a root of the energy equation,
+/// whatever the order the facts are cited in), then the fact with fewest unknowns.
 fn best_pair(
     unknowns: &[AtomId],
     facts: &[Fact],
@@ -251,11 +253,15 @@ fn best_pair(
     for u in unknowns {
         for (i, f) in facts.iter().enumerate() {
             let n_unknowns = f.value.atoms().iter().filter(|a| is_unknown(**a)).count();
-            if best.as_ref().is_some_and(|b| b.0 <= (false, n_unknowns)) {
+            let nonlinear = f.value.num().degree_in(*u) != 1 || f.value.den().contains(*u);
+            if best
+                .as_ref()
+                .is_some_and(|b| b.0 <= (false, nonlinear, n_unknowns))
+            {
                 continue;
             }
             if let Some(sol) = solve_for(&f.value, *u, signs)? {
-                let rank = (sol.divisor.is_some(), n_unknowns);
+                let rank = (sol.divisor.is_some(), nonlinear, n_unknowns);
                 if strict && rank.0 {
                     continue;
                 }
