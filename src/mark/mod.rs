@@ -6,7 +6,7 @@
 
 use crate::check::{check_source, FileReport, Options, Resolver, Status};
 use crate::diag::{line_col, Diagnostic};
-use crate::syntax::ast::{Chain, Item, StmtKind};
+use crate::syntax::ast::{Chain, Expr, ExprKind, Item, StmtKind};
 
 /// The kinds of first mistake (README, "rigor mark").
 pub const KINDS: [&str; 10] = [
@@ -59,6 +59,9 @@ pub struct Row {
     pub unreadable: Option<String>,
     /// The submission's check report (for feedback).
     pub report: Option<FileReport>,
+    /// Names the submission declared differently, mapped by role onto the reference's
+    /// (`Ig` → `I_G`) for comparing results.
+    pub mapping: Vec<(String, String)>,
 }
 
 impl Row {
@@ -171,6 +174,7 @@ pub fn unreadable(name: &str, why: String, expected: &[Expected]) -> Row {
             .collect(),
         unreadable: Some(why),
         report: None,
+        mapping: Vec::new(),
     }
 }
 
@@ -190,9 +194,12 @@ pub fn mark(
         .collect();
     let verified = links.iter().filter(|(l, _)| l.status.is_verified()).count();
     let first_failure = first_failure(&sub);
+    let mapping = role_mapping(reference, &sub);
+    let how = (opts, resolvers.0, mapping.as_slice());
     let results = expected
         .iter()
-        .map(|e| (e.clone(), compare(reference, e, &sub, opts, resolvers.0)))
+        .cloned()
+        .zip(compare_all(reference, expected, &sub, how))
         .collect();
     Row {
         file: name.to_string(),
@@ -201,6 +208,7 @@ pub fn mark(
         results,
         unreadable: None,
         report: Some(sub),
+        mapping,
     }
 }
 
@@ -218,74 +226,249 @@ fn first_failure(sub: &FileReport) -> Option<(usize, &'static str, String)> {
     Some((line, kind(d), d.message.clone()))
 }
 
-/// One expected result in the submission, compared under the reference's declarations:
-/// the submission's `lhs = last expression` checked as a claim at the end of the
-/// reference.
-fn compare(
-    reference: &FileReport,
-    e: &Expected,
-    sub: &FileReport,
-    opts: &Options,
-    resolver: &dyn Resolver,
-) -> Outcome {
+/// The submission's claim for an expected result (by label, else by the quantity on the
+/// left under the name mapping): its `lhs` and last expression, renamed.
+fn result_claim(e: &Expected, sub: &FileReport, mapping: &[(String, String)]) -> Option<String> {
     let chain = claim_chain(sub, &e.label).or_else(|| {
         let ast = sub.ast.as_ref()?;
         ast.items.iter().find_map(|i| match i {
             Item::Stmt(s) => match &s.kind {
-                StmtKind::Claim { chain, .. } if text(sub, chain.first.span) == e.lhs => {
+                StmtKind::Claim { chain, .. }
+                    if rename(&text(sub, chain.first.span), mapping) == e.lhs =>
+                {
                     Some(chain)
                 }
                 _ => None,
             },
             _ => None,
         })
-    });
-    let Some(chain) = chain else {
-        return Outcome::Missing;
-    };
+    })?;
     let last = chain.links.last().map_or(chain.first.span, |l| l.rhs.span);
-    let claim = format!(
-        "{}\nclaim [rigor_mark_result] {} = {}\n",
-        reference.source,
-        text(sub, chain.first.span),
-        text(sub, last)
-    );
-    let r = check_source(&reference.path, &claim, opts, resolver);
-    let Some(c) = r
-        .claims
+    Some(format!(
+        "{} = {}",
+        rename(&text(sub, chain.first.span), mapping),
+        rename(&text(sub, last), mapping)
+    ))
+}
+
+/// Every expected result in the submission, compared under the reference's
+/// declarations: the submission's `lhs = last expression` checked as claims appended to
+/// the reference, all in one check (unlabelled, so one that fails does not mark the
+/// others "not checked"; one that holds adds only a consequence of the reference). If
+/// the appended text cannot be read, each is checked alone.
+fn compare_all(
+    reference: &FileReport,
+    expected: &[Expected],
+    sub: &FileReport,
+    (opts, resolver, mapping): (&Options, &dyn Resolver, &[(String, String)]),
+) -> Vec<Outcome> {
+    let claims: Vec<Option<String>> = expected
         .iter()
-        .find(|c| c.label.as_deref() == Some("rigor_mark_result"))
-    else {
+        .map(|e| result_claim(e, sub, mapping))
+        .collect();
+    let check = |wanted: &[&String]| {
+        let mut source = format!("{}\n", reference.source);
+        let mut lines = Vec::new();
+        for c in wanted {
+            lines.push(source.lines().count() + 1);
+            source.push_str(&format!("claim {c}\n"));
+        }
+        (
+            check_source(&reference.path, &source, opts, resolver),
+            lines,
+        )
+    };
+    let wanted: Vec<&String> = claims.iter().flatten().collect();
+    let (r, lines) = check(&wanted);
+    let batched = r.ast.is_some();
+    let mut k = 0;
+    claims
+        .iter()
+        .map(|c| {
+            let Some(c) = c else {
+                return Outcome::Missing;
+            };
+            k += 1;
+            if batched {
+                outcome_at(&r, lines[k - 1])
+            } else {
+                let (alone, at) = check(&[c]);
+                outcome_at(&alone, at[0])
+            }
+        })
+        .collect()
+}
+
+/// The outcome of the appended claim on `line` of a checked reference.
+fn outcome_at(r: &FileReport, line: usize) -> Outcome {
+    let Some(c) = r.claims.iter().find(|c| c.line == line) else {
         return Outcome::Undecided("the result could not be read in the reference's terms".into());
+    };
+    let inside = |d: &&Diagnostic| {
+        d.primary
+            .as_ref()
+            .is_some_and(|p| p.0.start >= c.span.start && p.0.start <= c.span.end)
     };
     match c.links.first().map(|l| &l.status) {
         Some(Status::Verified { .. }) => Outcome::Right,
-        Some(Status::Failed) => {
-            let refuted = r.diagnostics.iter().any(|d| {
-                d.primary
-                    .as_ref()
-                    .is_some_and(|p| p.0.start >= reference.source.len())
-                    && d.code == "E0301"
-            });
-            if refuted {
-                Outcome::Wrong
-            } else {
-                Outcome::Undecided("rigor could not decide it".into())
-            }
-        }
-        _ => {
-            let why = r
-                .diagnostics
+        Some(Status::Failed)
+            if r.diagnostics
                 .iter()
-                .filter(|d| {
-                    d.primary
-                        .as_ref()
-                        .is_some_and(|p| p.0.start >= reference.source.len())
-                })
+                .filter(inside)
+                .any(|d| d.code == "E0301") =>
+        {
+            Outcome::Wrong
+        }
+        Some(Status::Failed) => Outcome::Undecided("rigor could not decide it".into()),
+        _ => Outcome::Undecided(
+            r.diagnostics
+                .iter()
+                .filter(inside)
                 .map(|d| d.message.clone())
                 .next()
-                .unwrap_or_else(|| "it uses names the reference does not declare".into());
-            Outcome::Undecided(why)
+                .unwrap_or_else(|| "it uses names the reference does not declare".into()),
+        ),
+    }
+}
+
+/// The names a file declares (`symbols`, ranges, `time`, `unknowns`).
+fn declared(r: &FileReport) -> Vec<String> {
+    let mut out = Vec::new();
+    for item in r.ast.iter().flat_map(|a| &a.items) {
+        if let Item::Stmt(st) = item {
+            let names = match &st.kind {
+                StmtKind::Symbols { names, .. }
+                | StmtKind::Range { names, .. }
+                | StmtKind::Time { names }
+                | StmtKind::Unknowns { names } => names,
+                _ => continue,
+            };
+            out.extend(names.iter().map(|n| n.name.clone()));
         }
+    }
+    out
+}
+
+/// Symbols of an expression in order of first appearance, primes dropped.
+fn symbols_in_order(e: &Expr, out: &mut Vec<String>) {
+    match &e.kind {
+        ExprKind::Sym(n) => {
+            let base = n.trim_end_matches('\'').to_string();
+            if !out.contains(&base) {
+                out.push(base);
+            }
+        }
+        ExprKind::Neg(x) => symbols_in_order(x, out),
+        ExprKind::Bin(_, a, b) => {
+            symbols_in_order(a, out);
+            symbols_in_order(b, out);
+        }
+        ExprKind::Call(_, args) => args.iter().for_each(|a| symbols_in_order(a, out)),
+        ExprKind::Num(_) | ExprKind::Pi => {}
+    }
+}
+
+/// The givens and constraints of a file, in order: label and symbols by first appearance.
+fn facts_of(r: &FileReport) -> Vec<(Option<String>, Vec<String>)> {
+    let mut out = Vec::new();
+    for item in r.ast.iter().flat_map(|a| &a.items) {
+        if let Item::Stmt(st) = item {
+            if let StmtKind::Given { label, chain } | StmtKind::Constraint { label, chain } =
+                &st.kind
+            {
+                let mut syms = Vec::new();
+                symbols_in_order(&chain.first, &mut syms);
+                for l in &chain.links {
+                    symbols_in_order(&l.rhs, &mut syms);
+                }
+                out.push((label.as_ref().map(|l| l.name.clone()), syms));
+            }
+        }
+    }
+    out
+}
+
+/// Names the submission declares and the reference does not, matched by role onto names
+/// the reference declares and the submission does not: the symbol at the same position
+/// (order of first appearance) in the same given or constraint — paired by label, else
+/// by order among those whose labels differ. Each name is mapped at most once.
+pub fn role_mapping(reference: &FileReport, sub: &FileReport) -> Vec<(String, String)> {
+    let (ref_names, sub_names) = (declared(reference), declared(sub));
+    let (ref_facts, sub_facts) = (facts_of(reference), facts_of(sub));
+    let labelled = |l: &Option<String>, other: &[(Option<String>, Vec<String>)]| {
+        l.as_ref()
+            .is_some_and(|l| other.iter().any(|o| o.0.as_ref() == Some(l)))
+    };
+    let mut pairs: Vec<(&Vec<String>, &Vec<String>)> = Vec::new();
+    for (l, syms) in &sub_facts {
+        if let Some((_, r)) = ref_facts.iter().find(|o| l.is_some() && &o.0 == l) {
+            pairs.push((syms, r));
+        }
+    }
+    let unpaired_sub = sub_facts.iter().filter(|f| !labelled(&f.0, &ref_facts));
+    let unpaired_ref = ref_facts.iter().filter(|f| !labelled(&f.0, &sub_facts));
+    pairs.extend(unpaired_sub.zip(unpaired_ref).map(|(a, b)| (&a.1, &b.1)));
+    let mut mapping: Vec<(String, String)> = Vec::new();
+    for (s_syms, r_syms) in pairs {
+        if s_syms.len() != r_syms.len() {
+            continue;
+        }
+        for (s, r) in s_syms.iter().zip(r_syms) {
+            let candidate = s != r
+                && sub_names.contains(s)
+                && !ref_names.contains(s)
+                && ref_names.contains(r)
+                && !sub_names.contains(r);
+            let fresh = !mapping.iter().any(|(a, b)| a == s || b == r);
+            if candidate && fresh {
+                mapping.push((s.clone(), r.clone()));
+            }
+        }
+    }
+    mapping
+}
+
+/// `text` with each whole name of `mapping` replaced (primes kept: `Ig'` → `I_G'`).
+fn rename(text: &str, mapping: &[(String, String)]) -> String {
+    if mapping.is_empty() {
+        return text.to_string();
+    }
+    let mut out = String::with_capacity(text.len());
+    let mut word = String::new();
+    let flush = |word: &mut String, out: &mut String| {
+        let to = mapping.iter().find(|(a, _)| a == word).map(|(_, b)| b);
+        out.push_str(to.unwrap_or(word));
+        word.clear();
+    };
+    for c in text.chars() {
+        // `2Ig` is 2 times Ig: a number before a name is not part of it.
+        let starts_name = c.is_alphabetic() || c == '_';
+        if starts_name && !word.is_empty() && word.chars().all(|d| d.is_ascii_digit()) {
+            out.push_str(&word);
+            word.clear();
+        }
+        if c.is_alphanumeric() || c == '_' {
+            word.push(c);
+        } else {
+            flush(&mut word, &mut out);
+            out.push(c);
+        }
+    }
+    flush(&mut word, &mut out);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::rename;
+
+    #[test]
+    fn renaming_replaces_whole_names_only() {
+        let m = vec![("Ig".to_string(), "I_G".to_string())];
+        assert_eq!(
+            rename("Ig theta'' + Igx + 2Ig", &m),
+            "I_G theta'' + Igx + 2I_G"
+        );
+        assert_eq!(rename("(m R^2 + Ig)/Ig'", &m), "(m R^2 + I_G)/I_G'");
     }
 }

@@ -22,6 +22,15 @@ fn clean(s: &str) -> String {
         .collect()
 }
 
+/// `s → x, Fr → F`: the names a submission declared differently.
+fn mapped(r: &Row) -> String {
+    r.mapping
+        .iter()
+        .map(|(a, b)| format!("{a} → {b}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// A few lines per submission.
 pub fn human(rows: &[Row]) -> String {
     let mut out = String::new();
@@ -41,6 +50,9 @@ pub fn human(rows: &[Row]) -> String {
                 "  first mistake: line {line} ({kind}): {}\n",
                 clean(msg)
             ));
+        }
+        if !r.mapping.is_empty() {
+            out.push_str(&format!("  names matched by role: {}\n", clean(&mapped(r))));
         }
         for (e, o) in &r.results {
             out.push_str(&format!(
@@ -121,6 +133,7 @@ pub fn json(rows: &[Row]) -> String {
                 "results_correct": right,
                 "results_total": all,
                 "results": results,
+                "names_mapped": r.mapping.iter().map(|(a, b)| json!({"submission": a, "reference": b})).collect::<Vec<_>>(),
                 "not_marked": r.unreadable,
             })
             .to_string()
@@ -188,6 +201,12 @@ pub fn feedback(r: &Row, reveal: Option<&str>) -> String {
         ));
     }
     out.push_str("\n## Results\n\n");
+    if !r.mapping.is_empty() {
+        out.push_str(&format!(
+            "Your names were matched to the reference's by the role they play in your equations: {}.\n\n",
+            crate::render::text::markdown_text(&clean(&mapped(r)))
+        ));
+    }
     for (e, o) in &r.results {
         let said = match o {
             Outcome::Right => "right".to_string(),

@@ -43,11 +43,41 @@ fn the_gradebook_has_the_documented_header_and_one_row_per_submission() {
         Some("file,steps_verified,steps_total,first_failure_line,first_failure_kind,results_correct,results_total")
     );
     let rows: Vec<&str> = lines.collect();
-    assert_eq!(rows.len(), 8);
+    assert_eq!(rows.len(), 9);
     assert!(rows[0].ends_with(",2,2,,,2,2"), "{}", rows[0]);
     assert!(rows[2].contains(",10,sign,1,2"), "{}", rows[2]);
     assert!(rows[3].contains(",9,factor,0,2"), "{}", rows[3]);
     assert!(rows[4].contains(",8,missing_fact,1,2"), "{}", rows[4]);
+    // Other names for the same quantities: matched by role, both results right.
+    assert!(
+        rows[8].ends_with("09_other_names.deriv,2,2,,,2,2"),
+        "{}",
+        rows[8]
+    );
+}
+
+#[test]
+fn names_declared_differently_are_matched_by_role_and_said() {
+    let sub = "tests/mark/class/09_other_names.deriv";
+    let (out, _, code) = mark(&["--reference", REF, sub]);
+    assert_eq!(code, 0);
+    assert!(
+        out.contains("  names matched by role: Fr → F, s → x, phi → theta\n"),
+        "{out}"
+    );
+    assert!(
+        out.contains("[xdd] x'': right") && out.contains("[F] F: right"),
+        "{out}"
+    );
+    let (out, _, _) = mark(&["--reference", REF, sub, "--format", "json"]);
+    let v: serde_json::Value = serde_json::from_str(out.trim()).expect("JSON");
+    assert_eq!(
+        v["names_mapped"][1],
+        serde_json::json!({"submission": "s", "reference": "x"})
+    );
+    // A submission that uses the reference's names needs no mapping.
+    let (out, _, _) = mark(&["--reference", REF, "tests/mark/class/01_correct.deriv"]);
+    assert!(!out.contains("names matched"), "{out}");
 }
 
 #[test]
@@ -61,8 +91,8 @@ fn feedback_names_the_first_mistake_without_revealing_the_reference() {
         .filter_map(|e| e.ok().map(|e| e.path()))
         .collect();
     files.sort();
-    assert_eq!(files.len(), 8);
-    for k in [0usize, 2, 4] {
+    assert_eq!(files.len(), 9);
+    for k in [0usize, 2, 4, 8] {
         let text = std::fs::read_to_string(&files[k]).expect("feedback");
         assert!(
             !text.contains("-2/3 g sin(beta) by"),
