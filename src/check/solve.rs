@@ -253,6 +253,12 @@ fn best_pair(
     for u in unknowns {
         for (i, f) in facts.iter().enumerate() {
             let n_unknowns = f.value.atoms().iter().filter(|a| is_unknown(**a)).count();
+            // An equation of motion gives its highest derivative from the state: never
+            // solve a fact for a derivative of which it holds a higher one (θ' from
+            // θ'' = θ'/2), which would leave the state undetermined.
+            if has_higher_derivative(&f.value, *u) {
+                continue;
+            }
             let nonlinear = f.value.num().degree_in(*u) != 1 || f.value.den().contains(*u);
             if best
                 .as_ref()
@@ -272,6 +278,21 @@ fn best_pair(
         }
     }
     Ok(best)
+}
+
+/// Whether `f` holds a higher time derivative of `u`'s symbol than `u`.
+fn has_higher_derivative(f: &Rat, u: AtomId) -> bool {
+    let Some(name) = atom::sym_name(u) else {
+        return false;
+    };
+    let base = name.trim_end_matches('\'');
+    let order = name.len() - base.len();
+    f.atoms().iter().any(|a| {
+        atom::sym_name(*a).is_some_and(|n| {
+            let b = n.trim_end_matches('\'');
+            b == base && n.len() - b.len() > order
+        })
+    })
 }
 
 /// A fact that gives `u` only through `u^n` (n ≥ 2) while `u` is not declared positive

@@ -194,3 +194,50 @@ proptest! {
         normal_form_agrees(&e)?;
     }
 }
+
+/// A random equation of motion `c1 θ'' = c2 f(θ) + c3 θ'` and a claim
+/// `a θ'' + b f(θ) + d θ' = e f(θ)` citing it. The truth, worked out here without the
+/// engine: θ and θ' are free at an instant (the state), θ'' is what the equation gives,
+/// so the claim holds exactly when the coefficients of f(θ) and θ' vanish after
+/// substituting θ'' = (c2 f + c3 θ')/c1. A verified claim must hold; a refuted one
+/// (E0301) must not.
+fn motion_case() -> impl Strategy<Value = (String, bool)> {
+    let f = prop_oneof![
+        Just("sin(theta)"),
+        Just("theta"),
+        Just("theta^2"),
+        Just("cos(theta)"),
+        Just("sin(theta) cos(theta)"),
+    ];
+    let c = || prop_oneof![(-3i64..=-1), (1i64..=3)];
+    let k = || -3i64..=3;
+    (f, c(), k(), k(), k(), k(), k(), k()).prop_map(|(f, c1, c2, c3, a, b, d, e)| {
+        let src = format!(
+            "symbols m g > 0\ntime theta\ngiven [eom] ({c1}) theta'' = ({c2}) m g {f} + ({c3}) theta'\nclaim ({a}) theta'' + ({b}) m g {f} + ({d}) theta' = ({e}) m g {f} by [eom]\n"
+        );
+        // a θ'' = a (c2 m g f + c3 θ')/c1: coefficient of m g f is a c2/c1 + b - e,
+        // of θ' it is a c3/c1 + d; multiply through by c1 (nonzero).
+        let holds = a * c2 + (b - e) * c1 == 0 && a * c3 + d * c1 == 0;
+        (src, holds)
+    })
+}
+
+proptest! {
+    #![proptest_config(crate::config(256))]
+
+    #[test]
+    fn claims_about_the_motion_at_an_instant_are_judged_right((src, holds) in motion_case()) {
+        let r = check_source("m.deriv", &src, &Options::default(), &MemoryResolver::new());
+        let link = &r.claims[0].links[0];
+        let refuted = r.diagnostics.iter().any(|d| d.code == "E0301");
+        if link.status.is_verified() {
+            prop_assert!(holds, "verified but false:\n{src}");
+        }
+        if refuted {
+            prop_assert!(!holds, "refuted but true:\n{src}\n{:?}", r.diagnostics);
+        }
+        // Decisive both ways: a true claim verifies, a false one is refuted.
+        prop_assert!(link.status.is_verified() == holds, "{src}\n{:?}", r.diagnostics);
+        prop_assert!(holds || refuted, "false but not refuted:\n{src}\n{:?}", r.diagnostics);
+    }
+}
