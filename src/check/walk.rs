@@ -413,8 +413,36 @@ impl<'l, 'o> Checker<'l, 'o> {
                 self.env.bodies.insert(name.name.clone(), b);
                 self.guard_env.bodies.insert(name.name.clone(), def.clone());
                 self.body_coords.insert(name.name.clone(), coords);
+                self.mass_sign(name);
             }
             Err(e) => self.lower_error(e),
+        }
+    }
+
+    /// Warns (W0102) when a body's mass comes out negative: its bounds run backwards.
+    fn mass_sign(&mut self, name: &crate::syntax::ast::Name) {
+        let opts = crate::syntax::ParseOptions::default();
+        let Ok(e) = crate::syntax::parse_expr(&format!("int(1, {})", name.name), &opts) else {
+            return;
+        };
+        let Ok(mass) = Lowerer::new(&self.env).lower(&e) else {
+            return;
+        };
+        if matches!(sign_of(&mass, &self.env.signs), Sign::Neg) {
+            let mut d = Diagnostic::error(
+                "W0102",
+                format!(
+                    "the mass of `{}` comes out negative: {}",
+                    name.name,
+                    plain(&mass)
+                ),
+                name.span,
+                "do its bounds run backwards?",
+            );
+            d.severity = Severity::Warning;
+            self.report.diagnostics.push(
+                d.note("each coordinate must run from its lower bound to its upper one (`y from -L/2 to L/2`)"),
+            );
         }
     }
 

@@ -202,3 +202,20 @@ fn an_undeclared_name_is_diagnosed_as_the_format_would_read_it() {
         "did you mean `omega`?"
     );
 }
+
+#[test]
+fn a_body_whose_bounds_run_backwards_gets_a_warning() {
+    let backwards = "symbols m L > 0\nbody rod: dm = m/L dy, y from L/2 to -L/2\n";
+    assert_eq!(
+        diagnoses(backwards),
+        [(
+            "W0102".to_string(),
+            "do its bounds run backwards?".to_string()
+        )]
+    );
+    let forwards = "symbols m L > 0\nbody rod: dm = m/L dy, y from -L/2 to L/2\n";
+    assert!(diagnoses(forwards).is_empty());
+    // A disk in polar coordinates, the angle backwards.
+    let disk = "symbols m R > 0\nbody disk: dm = m/(pi R^2) r dr dphi, r from 0 to R, phi from 2 pi to 0\n";
+    assert_eq!(diagnoses(disk)[0].0, "W0102");
+}
