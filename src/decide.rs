@@ -287,24 +287,73 @@ pub fn diagnose(a: &Rat, b: &Rat, d: &Rat) -> Option<String> {
         } else {
             ("s", "the terms")
         };
+        let inertia = about_inertia(a) || about_inertia(b);
+        let pa = match (inertia && parallel_axis_terms(d), n) {
+            (false, _) => "",
+            (true, 1) => ": a parallel-axis term (mass × squared distance)?",
+            (true, _) => ": parallel-axis terms (mass × squared distance)?",
+        };
         if has_terms(a, d) {
             return Some(format!(
-                "the left side has {n} extra term{s}: {}",
+                "the left side has {n} extra term{s}: {}{pa}",
                 terms_of(d).join(", ")
             ));
         }
         if has_terms(b, &d.neg()) {
             return Some(format!(
-                "the left side is missing {them} {} that the right side has",
+                "the left side is missing {them} {} that the right side has{pa}",
                 terms_of(&d.neg()).join(", ")
             ));
         }
         return Some(format!(
-            "the two sides differ by {} (left − right)",
+            "the two sides differ by {} (left − right){pa}",
             plain(d)
         ));
     }
     None
+}
+
+/// Whether `r` is about moments of inertia: it holds a symbol named `I`, `I_…` or
+/// `J…`, or a moment of a body (`int(x^2, B)`).
+fn about_inertia(r: &Rat) -> bool {
+    let mut syms = Vec::new();
+    symbols_in(r, &mut syms);
+    let named = syms
+        .iter()
+        .filter_map(|a| crate::normal::atom::sym_name(*a))
+        .any(|n| n == "I" || n.starts_with("I_") || n.starts_with('J'));
+    named
+        || r.atoms().iter().any(|a| {
+            matches!(
+                &*crate::normal::atom::get(*a),
+                crate::normal::Atom::Moment(..)
+            )
+        })
+}
+
+/// Whether every term of `d` (over a constant denominator) is a mass times a squared
+/// distance: one mass-like symbol (`m`, `M`, `m_1`, …) to the first power, and symbols
+/// of total degree 2 in even powers (`m d^2`, `c^2 m/4`) — what a parallel-axis step
+/// adds or forgets.
+fn parallel_axis_terms(d: &Rat) -> bool {
+    let mass_like = |n: &str| {
+        let base = n.split('_').next().unwrap_or(n);
+        base == "m" || base == "M"
+    };
+    d.den().as_constant().is_some()
+        && !d.num().terms().is_empty()
+        && d.num().terms().iter().all(|(mono, _)| {
+            let mut masses = 0;
+            let mut rest = 0;
+            for &(a, e) in mono.pairs() {
+                match crate::normal::atom::sym_name(a) {
+                    Some(n) if mass_like(&n) && e == 1 => masses += 1,
+                    Some(_) if e % 2 == 0 => rest += e,
+                    _ => return false,
+                }
+            }
+            masses == 1 && rest == 2
+        })
 }
 
 /// Whether every term of `t` is a term of `r` (over the same denominator).

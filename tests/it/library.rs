@@ -219,3 +219,26 @@ fn a_body_whose_bounds_run_backwards_gets_a_warning() {
     let disk = "symbols m R > 0\nbody disk: dm = m/(pi R^2) r dr dphi, r from 0 to R, phi from 2 pi to 0\n";
     assert_eq!(diagnoses(disk)[0].0, "W0102");
 }
+
+#[test]
+fn a_forgotten_mass_times_squared_distance_is_named_where_inertia_is_concerned() {
+    let hint = |a: &str, b: &str| {
+        let opts = rigor::syntax::ParseOptions::default();
+        let env = rigor::lower::Env::default();
+        let lower = |s: &str| {
+            rigor::lower::lower(&rigor::syntax::parse_expr(s, &opts).unwrap(), &env).unwrap()
+        };
+        let (a, b) = (lower(a), lower(b));
+        let d = a.sub(&b).unwrap();
+        rigor::decide::diagnose(&a, &b, &d).unwrap_or_default()
+    };
+    assert_eq!(
+        hint("I_G", "I_G + m d^2"),
+        "the left side is missing the term d^2 m that the right side has: a parallel-axis term (mass × squared distance)?"
+    );
+    // Kinetic energy is a mass times a squared speed, but nothing here is an inertia.
+    assert_eq!(
+        hint("m g h", "m g h + m v^2/2"),
+        "the left side is missing the term m v^2/2 that the right side has"
+    );
+}
