@@ -222,8 +222,14 @@ impl Checker<'_, '_> {
             *odd = None;
             return status;
         }
+        // Equal as written, or once the facts in scope are used (this only places the
+        // error; both links stay unverified).
         let equal = |(k, lhs, _, _): &(usize, Rat, usize, Span)| {
-            *k + 1 == i && link.op == RelOp::Eq && lhs.sub(rhs).is_ok_and(|d| d.is_zero())
+            *k + 1 == i
+                && link.op == RelOp::Eq
+                && lhs
+                    .sub(rhs)
+                    .is_ok_and(|d| d.is_zero() || self.zero_by_facts(&d))
         };
         if let Some((_, _, di, at)) = odd.take_if(|o| equal(o)) {
             self.report.diagnostics.truncate(before);
@@ -232,6 +238,14 @@ impl Checker<'_, '_> {
         }
         *odd = (link.op == RelOp::Eq).then(|| (i, prev.clone(), before, link.span));
         status
+    }
+
+    /// Whether `d` is zero once the unknowns are eliminated with every fact in scope.
+    fn zero_by_facts(&self, d: &Rat) -> bool {
+        let facts: Vec<super::solve::Fact> = self.facts.iter().map(|k| k.fact.clone()).collect();
+        let is_unknown = |a| super::walk::unknown_atom(&self.scope, a);
+        super::solve::eliminate_all(d, &facts, &is_unknown, &self.env.signs, None, false)
+            .is_ok_and(|(t, _, _)| t.is_zero())
     }
 
     /// Links k and k + 1 of a chain both failed, but the line before k equals the line
