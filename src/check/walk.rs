@@ -497,6 +497,9 @@ impl<'l, 'o> Checker<'l, 'o> {
                         "the two sides can never be equal",
                     ));
                     self.report.input_error = true;
+                    // Not a fact: from a false one anything would follow. Steps citing
+                    // it are not checked (one mistake, one error).
+                    return false;
                 }
                 let mut derivs = vec![value.clone()];
                 if constraint {
