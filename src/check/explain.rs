@@ -160,6 +160,10 @@ impl Checker<'_, '_> {
     /// for the step to be refuted like one about constants rather than left "not
     /// verified".
     fn state_sides(&self, input: &LinkInput<'_>, red: &Reduced) -> Option<Sides> {
+        // Not after the budget ran out (the elimination here has none of its own).
+        if red.timed_out() {
+            return None;
+        }
         // Not when a fact the link may use failed to check: it might have fixed them.
         let facts_complete = match input.link.by.as_ref().map(|b| &b.0) {
             Some(crate::syntax::ast::By::Labels(ls)) => {
