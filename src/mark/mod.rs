@@ -349,13 +349,20 @@ fn declared(r: &FileReport) -> Vec<String> {
     out
 }
 
-/// Symbols of an expression in order of first appearance, primes dropped.
-fn symbols_in_order(e: &Expr, out: &mut Vec<String>) {
+/// Symbols of an expression in order of first appearance (primes dropped), each with
+/// the derivative orders it is used with (`x''` and `x` → x, {0, 2}).
+fn symbols_in_order(e: &Expr, out: &mut Syms) {
     match &e.kind {
         ExprKind::Sym(n) => {
             let base = n.trim_end_matches('\'').to_string();
-            if !out.contains(&base) {
-                out.push(base);
+            let order = n.len() - base.len();
+            match out.iter_mut().find(|(b, _)| *b == base) {
+                Some((_, orders)) if !orders.contains(&order) => {
+                    orders.push(order);
+                    orders.sort_unstable();
+                }
+                Some(_) => {}
+                None => out.push((base, vec![order])),
             }
         }
         ExprKind::Neg(x) => symbols_in_order(x, out),
@@ -368,8 +375,11 @@ fn symbols_in_order(e: &Expr, out: &mut Vec<String>) {
     }
 }
 
+/// Symbols by first appearance, each with the derivative orders it is used with.
+type Syms = Vec<(String, Vec<usize>)>;
+
 /// The givens and constraints of a file, in order: label and symbols by first appearance.
-fn facts_of(r: &FileReport) -> Vec<(Option<String>, Vec<String>)> {
+fn facts_of(r: &FileReport) -> Vec<(Option<String>, Syms)> {
     let mut out = Vec::new();
     for item in r.ast.iter().flat_map(|a| &a.items) {
         if let Item::Stmt(st) = item {
@@ -391,15 +401,17 @@ fn facts_of(r: &FileReport) -> Vec<(Option<String>, Vec<String>)> {
 /// Names the submission declares and the reference does not, matched by role onto names
 /// the reference declares and the submission does not: the symbol at the same position
 /// (order of first appearance) in the same given or constraint — paired by label, else
-/// by order among those whose labels differ. Each name is mapped at most once.
+/// by order among those whose labels differ — when the two have the same shape (as
+/// many symbols, each used with the same derivatives: `a` for `x''` is not `x`). Each
+/// name is mapped at most once.
 pub fn role_mapping(reference: &FileReport, sub: &FileReport) -> Vec<(String, String)> {
     let (ref_names, sub_names) = (declared(reference), declared(sub));
     let (ref_facts, sub_facts) = (facts_of(reference), facts_of(sub));
-    let labelled = |l: &Option<String>, other: &[(Option<String>, Vec<String>)]| {
+    let labelled = |l: &Option<String>, other: &[(Option<String>, Syms)]| {
         l.as_ref()
             .is_some_and(|l| other.iter().any(|o| o.0.as_ref() == Some(l)))
     };
-    let mut pairs: Vec<(&Vec<String>, &Vec<String>)> = Vec::new();
+    let mut pairs: Vec<(&Syms, &Syms)> = Vec::new();
     for (l, syms) in &sub_facts {
         if let Some((_, r)) = ref_facts.iter().find(|o| l.is_some() && &o.0 == l) {
             pairs.push((syms, r));
@@ -410,10 +422,13 @@ pub fn role_mapping(reference: &FileReport, sub: &FileReport) -> Vec<(String, St
     pairs.extend(unpaired_sub.zip(unpaired_ref).map(|(a, b)| (&a.1, &b.1)));
     let mut mapping: Vec<(String, String)> = Vec::new();
     for (s_syms, r_syms) in pairs {
-        if s_syms.len() != r_syms.len() {
+        // The same shape: as many symbols, each used with the same derivatives.
+        let same_shape =
+            s_syms.len() == r_syms.len() && s_syms.iter().zip(r_syms).all(|(a, b)| a.1 == b.1);
+        if !same_shape {
             continue;
         }
-        for (s, r) in s_syms.iter().zip(r_syms) {
+        for ((s, _), (r, _)) in s_syms.iter().zip(r_syms) {
             let candidate = s != r
                 && sub_names.contains(s)
                 && !ref_names.contains(s)

@@ -75,6 +75,18 @@ fn names_declared_differently_are_matched_by_role_and_said() {
         v["names_mapped"][1],
         serde_json::json!({"submission": "s", "reference": "x"})
     );
+    // A name in the same place but with other derivatives (the acceleration written `a`
+    // where the reference has x'') is not mapped onto x: never called wrong for it.
+    let (out, _, _) = mark(&[
+        "--reference",
+        REF,
+        "tests/mark/other/acceleration_named_a.deriv",
+    ]);
+    assert!(!out.contains("names matched"), "{out}");
+    assert!(
+        out.contains("[xdd] x'': undecided (undeclared symbol `a`)"),
+        "{out}"
+    );
     // A submission that uses the reference's names needs no mapping.
     let (out, _, _) = mark(&["--reference", REF, "tests/mark/class/01_correct.deriv"]);
     assert!(!out.contains("names matched"), "{out}");
