@@ -425,42 +425,31 @@ impl Checker<'_, '_> {
     }
 
     /// A claim none of whose links is checked (`msg` says why, as a note).
-    fn push_not_checked_claim(&mut self, mut claim: ClaimReport, chain: &Chain, msg: String) {
-        if let Some(l) = &claim.label {
-            self.failed_labels.insert(l.clone(), claim.line);
-        }
+    fn push_not_checked_claim(&mut self, claim: ClaimReport, chain: &Chain, msg: String) {
         let whole = chain
             .links
             .last()
             .map_or(chain.first.span, |l| chain.first.span.to(l.span));
         self.note_not_checked(msg, whole);
-        for (i, link) in chain.links.iter().enumerate() {
-            let span = if i == 0 {
-                chain.first.span.to(link.span)
-            } else {
-                link.span
-            };
-            claim.links.push(LinkReport {
-                span,
-                op: link.op,
-                lhs: None,
-                rhs: None,
-                status: Status::NotChecked,
-                units: None,
-            });
-        }
-        self.report.claims.push(claim);
+        self.push_undecided_links(claim, chain, Status::NotChecked);
     }
 
-    fn push_error_claim(&mut self, mut claim: ClaimReport, chain: &Chain) {
-        if let Some(l) = &claim.label {
-            self.failed_labels.insert(l.clone(), claim.line);
-        }
+    /// A claim that could not be read (its error is reported): every link an error, or
+    /// undecided when the time budget ran out.
+    fn push_error_claim(&mut self, claim: ClaimReport, chain: &Chain) {
         let status = if self.timed_out {
             Status::Undecided
         } else {
             Status::Error
         };
+        self.push_undecided_links(claim, chain, status);
+    }
+
+    /// The claim with every link given `status`; its label, if any, did not check.
+    fn push_undecided_links(&mut self, mut claim: ClaimReport, chain: &Chain, status: Status) {
+        if let Some(l) = &claim.label {
+            self.failed_labels.insert(l.clone(), claim.line);
+        }
         for (i, link) in chain.links.iter().enumerate() {
             let span = if i == 0 {
                 chain.first.span.to(link.span)

@@ -90,7 +90,7 @@ impl MemoryResolver {
 }
 
 /// `a/./b/../c` → `a/c`; `None` when it climbs above the root or is absolute.
-fn normalise(path: &str) -> Option<String> {
+pub(crate) fn normalise(path: &str) -> Option<String> {
     if path.starts_with('/') {
         return None;
     }

@@ -37,5 +37,6 @@ mod step;
 mod terms;
 mod walk;
 
+pub(crate) use entry::normalise;
 pub use entry::{check_source, Exports, MemoryResolver, Options, Resolver, Source};
 pub use report::{cite, ClaimReport, FileReport, Justification, LinkReport, Status};

@@ -399,18 +399,7 @@ pub fn document(
     } else {
         rigor::render::markdown::document(&report)
     };
-    let written = match out {
-        None => {
-            out!("{text}");
-            Ok(())
-        }
-        Some(path) => write_atomically(path, &text),
-    };
-    if let Err(e) = written {
-        errln!(
-            "error: cannot write {}: {e}",
-            out.map_or_else(String::new, |p| p.display().to_string())
-        );
+    if !write_document(out, &text) {
         return 2;
     }
     if !report.ok() {
@@ -434,18 +423,7 @@ fn book(reports: &[FileReport], (out, title): (Option<&Path>, Option<&str>), lat
     } else {
         rigor::render::markdown::book(reports, title)
     };
-    let written = match out {
-        None => {
-            out!("{text}");
-            Ok(())
-        }
-        Some(path) => write_atomically(path, &text),
-    };
-    if let Err(e) = written {
-        errln!(
-            "error: cannot write {}: {e}",
-            out.map_or_else(String::new, |p| p.display().to_string())
-        );
+    if !write_document(out, &text) {
         return 2;
     }
     for r in reports.iter().filter(|r| !r.ok()) {
@@ -458,6 +436,25 @@ fn book(reports: &[FileReport], (out, title): (Option<&Path>, Option<&str>), lat
     } else {
         1
     }
+}
+
+/// Writes a document to `out` (standard output when `None`); false after saying why
+/// it could not be written.
+fn write_document(out: Option<&Path>, text: &str) -> bool {
+    let written = match out {
+        None => {
+            out!("{text}");
+            Ok(())
+        }
+        Some(path) => write_atomically(path, text),
+    };
+    if let Err(e) = &written {
+        errln!(
+            "error: cannot write {}: {e}",
+            out.map_or_else(String::new, |p| p.display().to_string())
+        );
+    }
+    written.is_ok()
 }
 
 /// Writes to a temporary file beside `path`, then renames it over `path`, so a crash

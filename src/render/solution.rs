@@ -259,23 +259,14 @@ pub(crate) fn build_in(report: &FileReport, place: &Place<'_>) -> Solution {
     }
 }
 
-/// `dir/a.deriv` and `../b/c.deriv` → `b/c.deriv` (lexically; `None` above the root).
+/// `dir/a.deriv` and `../b/c.deriv` → `b/c.deriv` (lexically, the leading `/` of an
+/// absolute path dropped on both sides of a comparison; `None` above the root).
 fn joined(base: &str, rel: &str) -> Option<String> {
     let dir = std::path::Path::new(base)
         .parent()
         .map(|p| p.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let mut parts: Vec<&str> = Vec::new();
-    for p in dir.split('/').chain(rel.split('/')) {
-        match p {
-            "" | "." => {}
-            ".." => {
-                parts.pop()?;
-            }
-            p => parts.push(p),
-        }
-    }
-    Some(parts.join("/"))
+    crate::check::normalise(format!("{dir}/{rel}").trim_start_matches('/'))
 }
 
 impl<'a> Builder<'a> {
