@@ -189,8 +189,14 @@ impl Checker<'_, '_> {
             _ => Vec::new(),
         };
         if cited.is_empty() || d.code.starts_with("E04") {
+            // "Not verified" is neither shown true nor shown false.
+            let status = if d.code == "E0302" {
+                Status::Undecided
+            } else {
+                Status::Failed
+            };
             self.report.diagnostics.push(d);
-            return Status::Failed;
+            return status;
         }
         let msg = if by.is_some() {
             format!(
@@ -218,7 +224,9 @@ impl Checker<'_, '_> {
         before: usize,
         status: Status,
     ) -> Status {
-        if !matches!(status, Status::Failed) || self.report.diagnostics.len() != before + 1 {
+        if !matches!(status, Status::Failed | Status::Undecided)
+            || self.report.diagnostics.len() != before + 1
+        {
             *odd = None;
             return status;
         }

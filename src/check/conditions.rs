@@ -33,14 +33,16 @@ impl Checker<'_, '_> {
             );
         }
         let steps = red.elim.as_ref().map_or(&[][..], |e| &e.steps[..]);
+        // The step's own conditions and its facts' come first; then the elimination's.
+        let own = all.len();
         all.extend(
             steps
                 .iter()
                 .filter_map(|s| s.divisor.clone().map(|d| (d, Need::NonZero))),
         );
         let mut conditions: Vec<String> = Vec::new();
-        for (d, need) in &all {
-            if let Some(text) = self.condition(d, *need, red, input)? {
+        for (k, (d, need)) in all.iter().enumerate() {
+            if let Some(text) = self.condition(d, *need, red, input, k >= own)? {
                 if !conditions.contains(&text) {
                     conditions.push(text);
                 }
@@ -101,13 +103,28 @@ impl Checker<'_, '_> {
         need: Need,
         red: &Reduced,
         input: &LinkInput<'_>,
+        elimination: bool,
     ) -> Result<Option<String>, Diagnostic> {
         let signs = &self.env.signs;
         let span = input.span;
         let steps = red.elim.as_ref().map_or(&[][..], |e| &e.steps[..]);
         let reduced = super::solve::apply_steps(d, steps, signs).unwrap_or_else(|_| d.clone());
         if need == Need::NonZero {
-            if reduced.is_zero() || zero_by_facts(&reduced, &red.scope, signs) {
+            let zero = reduced.is_zero() || zero_by_facts(&reduced, &red.scope, signs);
+            if zero && elimination {
+                // rigor's own way of solving the facts divided by zero: that says nothing
+                // about the step, which may well hold (solved another way).
+                return Err(Diagnostic::error(
+                    "E0302",
+                    format!(
+                        "not verified: solving the facts for the unknowns divides by {}, which the facts make zero; rigor could not settle this step another way",
+                        plain(d)
+                    ),
+                    span,
+                    "not verified",
+                ));
+            }
+            if zero {
                 return Err(Diagnostic::error(
                     "E0305",
                     format!(

@@ -2,7 +2,7 @@
 //! declare what they use. Markdown goes through a CommonMark parser (pulldown-cmark,
 //! with its math extension), so code blocks, inline code and `\$` are never math.
 
-use pulldown_cmark::{Event, Options, Parser};
+use pulldown_cmark::{Event, Options, Parser, Tag};
 
 /// The kind of document.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -29,6 +29,9 @@ impl DocKind {
 pub enum Piece {
     /// A `rigor:` comment: a derivation statement.
     Directive(String),
+    /// A heading: what the notes derive under one heading is one scope (its
+    /// definitions and stated relations do not reach the next).
+    Heading,
     /// Display math: its text and the byte offset where it starts.
     Math {
         /// The math between the delimiters.
@@ -64,6 +67,12 @@ fn markdown(doc: &str) -> Vec<Piece> {
                     start,
                 });
             }
+            Event::Start(Tag::Heading { .. }) => out.push(Piece::Heading),
+            Event::Start(Tag::Paragraph)
+                if numbered_heading(doc.get(range.clone()).unwrap_or("")) =>
+            {
+                out.push(Piece::Heading);
+            }
             Event::Html(h) | Event::InlineHtml(h) => {
                 let mut rest = h.as_ref();
                 while let Some(i) = rest.find("<!--") {
@@ -79,6 +88,47 @@ fn markdown(doc: &str) -> Vec<Piece> {
         }
     }
     out
+}
+
+/// The LaTeX sectioning commands: each starts a scope.
+const SECTIONS: [&str; 5] = [
+    "\\chapter",
+    "\\section",
+    "\\subsection",
+    "\\subsubsection",
+    "\\paragraph",
+];
+
+/// Whether a Markdown paragraph is a heading written as plain text, as notes converted
+/// from PDF have them: one short line that starts with a section number (`5.1.2 Radius
+/// of gyration`) or with `Example`, `Exercise`, `Problem` and a number (`Example 5.1 –
+/// Rolling cylinder`), and does not end as a sentence does.
+fn numbered_heading(paragraph: &str) -> bool {
+    let line = paragraph.trim();
+    if line.contains('\n') || line.len() > 80 || line.ends_with(['.', ':', ',', ';']) {
+        return false;
+    }
+    let mut words = line.split_whitespace();
+    let Some(first) = words.next() else {
+        return false;
+    };
+    let numbered = |w: &str| {
+        let w = w.trim_end_matches(['.', ':']);
+        !w.is_empty()
+            && w.split('.')
+                .all(|p| !p.is_empty() && p.bytes().all(|b| b.is_ascii_digit()))
+    };
+    let titled = |w: Option<&str>| {
+        w.and_then(|w| w.chars().next())
+            .is_some_and(char::is_uppercase)
+    };
+    if numbered(first) && first.contains('.') {
+        return titled(words.next());
+    }
+    let keyword = ["example", "exercise", "problem", "worked example"]
+        .iter()
+        .any(|k| first.eq_ignore_ascii_case(k));
+    keyword && words.next().is_some_and(numbered)
 }
 
 /// The environments whose content is display math.
@@ -106,6 +156,14 @@ fn latex(doc: &str) -> Vec<Piece> {
                 out.push(Piece::Directive(d));
             }
             i += end.max(1);
+            continue;
+        }
+        if SECTIONS.iter().any(|c| {
+            rest.strip_prefix(c)
+                .is_some_and(|r| r.starts_with(['{', '*', '[']))
+        }) {
+            out.push(Piece::Heading);
+            i += 1;
             continue;
         }
         let open = [("\\[", "\\]"), ("$$", "$$")]
@@ -163,4 +221,211 @@ pub fn chain_lines(text: &str) -> Vec<(&str, usize)> {
     out.push((text.get(start..).unwrap_or(""), start));
     out.retain(|(s, _)| !s.trim().is_empty());
     out
+}
+
+/// The relations of one chain line, each with its offset in the line. A line may hold
+/// several, set apart by `\quad`/`\qquad` or joined by an arrow (`\rightarrow`,
+/// `\Rightarrow`, `\implies`); a part with no relation is a label (`\sum F_x`,
+/// `(5.1)`) and is left out, as is a label before a colon (`\sum M(A): …`).
+pub fn relations(line: &str) -> Vec<(&str, usize)> {
+    const BREAKS: [&str; 9] = [
+        "qquad",
+        "quad",
+        "rightarrow",
+        "Rightarrow",
+        "longrightarrow",
+        "Longrightarrow",
+        "implies",
+        "iff",
+        "therefore",
+    ];
+    let mut parts = Vec::new();
+    let mut start = 0;
+    let mut depth = 0i32;
+    let bytes = line.as_bytes();
+    let mut k = 0;
+    while k < line.len() {
+        match bytes[k] {
+            b'{' => depth += 1,
+            b'}' => depth -= 1,
+            b'\\' => {
+                let name_len = line[k + 1..]
+                    .bytes()
+                    .take_while(u8::is_ascii_alphabetic)
+                    .count();
+                let name = &line[k + 1..k + 1 + name_len];
+                if depth == 0 && BREAKS.contains(&name) {
+                    parts.push((start, k));
+                    start = k + 1 + name_len;
+                }
+                k += 1 + name_len.max(1);
+                continue;
+            }
+            _ => {}
+        }
+        k += 1;
+    }
+    parts.push((start, line.len()));
+    let mut out = Vec::new();
+    for (a, b) in parts {
+        let mut a = a;
+        let part = &line[a..b];
+        if let Some(colon) = top_level_colon(part) {
+            if !has_relation(&part[..colon]) {
+                a += colon + 1;
+            }
+        }
+        let text = &line[a..b];
+        if has_relation(text) {
+            out.push((text, a));
+        }
+    }
+    out
+}
+
+/// The first `:` outside braces (not `:=`).
+fn top_level_colon(text: &str) -> Option<usize> {
+    let mut depth = 0i32;
+    for (k, c) in text.char_indices() {
+        match c {
+            '{' => depth += 1,
+            '}' => depth -= 1,
+            ':' if depth == 0 && !text[k + 1..].starts_with('=') => return Some(k),
+            _ => {}
+        }
+    }
+    None
+}
+
+/// Whether a piece of LaTeX math holds a relation outside braces.
+fn has_relation(text: &str) -> bool {
+    const RELATIONS: [&str; 11] = [
+        "approx",
+        "simeq",
+        "thickapprox",
+        "neq",
+        "ne",
+        "le",
+        "leq",
+        "leqslant",
+        "ge",
+        "geq",
+        "geqslant",
+    ];
+    let mut depth = 0i32;
+    let bytes = text.as_bytes();
+    let mut k = 0;
+    while k < text.len() {
+        match bytes[k] {
+            b'{' => depth += 1,
+            b'}' => depth -= 1,
+            b'=' | b'<' | b'>' if depth == 0 => return true,
+            b'\\' => {
+                let name_len = text[k + 1..]
+                    .bytes()
+                    .take_while(u8::is_ascii_alphabetic)
+                    .count();
+                if depth == 0 && RELATIONS.contains(&&text[k + 1..k + 1 + name_len]) {
+                    return true;
+                }
+                k += 1 + name_len.max(1);
+                continue;
+            }
+            _ => {}
+        }
+        k += 1;
+    }
+    false
+}
+
+/// The offset of the first `=` outside braces at or after `from`.
+pub fn equals_after(text: &str, from: usize) -> Option<usize> {
+    let mut depth = 0i32;
+    for (k, c) in text.char_indices() {
+        match c {
+            '{' => depth += 1,
+            '}' => depth -= 1,
+            '=' if depth == 0 && k >= from => return Some(k),
+            _ => {}
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn texts(line: &str) -> Vec<&str> {
+        relations(line).into_iter().map(|(t, _)| t.trim()).collect()
+    }
+
+    #[test]
+    fn labels_spacing_and_arrows_part_the_relations_of_a_line() {
+        assert_eq!(
+            texts(r"\sum F_{y} \qquad N - mg \cos \beta = m \ddot{y} = 0"),
+            [r"N - mg \cos \beta = m \ddot{y} = 0"]
+        );
+        assert_eq!(
+            texts(
+                r"\sum M(A): \qquad -mg = I_A \ddot\theta \qquad \rightarrow \qquad \ddot\theta = -g"
+            ),
+            [r"-mg = I_A \ddot\theta", r"\ddot\theta = -g"]
+        );
+        assert_eq!(texts(r"\int x\,dm = 0 \qquad \int y\,dm = 0").len(), 2);
+        // A colon after a relation is not a label's.
+        assert_eq!(texts(r"a = b : c"), [r"a = b : c"]);
+        // Braces hide what is inside them; a label alone is no relation.
+        assert_eq!(texts(r"\text{see \quad below}"), Vec::<&str>::new());
+        assert_eq!(texts(r"v = 3 \quad \text{(m/s)}"), ["v = 3"]);
+        // Offsets point into the line.
+        let line = r"x = 1 \implies y = 2";
+        let (t, at) = relations(line)[1];
+        assert_eq!(&line[at..at + t.len()], t);
+    }
+
+    #[test]
+    fn numbered_plain_text_lines_are_headings_and_sentences_are_not() {
+        for h in [
+            "5.1 Moment of Inertia",
+            "5.1.2 Standard Cases",
+            "Example 5.1 – Rolling Cylinder",
+            "Problem 3 A ladder",
+        ] {
+            assert!(numbered_heading(h), "{h}");
+        }
+        for p in [
+            "5 apples fell.",
+            "5.1 is the number of the section.",
+            "The moment of inertia 5.1 Moment",
+            "Example: a rod",
+            "3.5 kg",
+            "5.1 Moment of Inertia\nand more text on a second line",
+        ] {
+            assert!(!numbered_heading(p), "{p}");
+        }
+    }
+
+    #[test]
+    fn headings_are_pieces_in_both_kinds_of_document() {
+        let md = "# Title\n\n5.2 General Motion\n\n$$a = b$$\n";
+        let kinds: Vec<bool> = pieces(md, DocKind::Markdown)
+            .iter()
+            .map(|p| matches!(p, Piece::Heading))
+            .collect();
+        assert_eq!(kinds, [true, true, false]);
+        let tex = "\\section{One}\n\\[a = b\\]\n\\subsection*{Two}\n";
+        let kinds: Vec<bool> = pieces(tex, DocKind::Latex)
+            .iter()
+            .map(|p| matches!(p, Piece::Heading))
+            .collect();
+        assert_eq!(kinds, [true, false, true]);
+    }
+
+    #[test]
+    fn the_equals_sign_after_a_place_is_found_outside_braces() {
+        assert_eq!(equals_after(r"\int_0^R r^2 dm = x = y", 10), Some(16));
+        assert_eq!(equals_after(r"\frac{a=b}{c} = d", 0), Some(14));
+        assert_eq!(equals_after("a = b", 4), None);
+    }
 }

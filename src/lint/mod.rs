@@ -64,6 +64,10 @@ struct Placed {
     first: Option<Part>,
     /// The claim of the links after the first, if any.
     rest: Option<Part>,
+    /// The statement that takes the first link as stated (a `given` or a `let`).
+    stated: Option<Part>,
+    /// The links after the first.
+    later: Vec<Later>,
     /// Where the whole chain is in the document.
     span: Span,
     /// Whether the first link states a relation for a lone symbol (a definition or a
@@ -75,18 +79,166 @@ struct Placed {
     firm: bool,
 }
 
-/// Checks the chains of `doc`.
+/// What the notes derive under one heading.
+#[derive(Default)]
+struct Scope {
+    /// The document's `rigor:` statements before the scope.
+    directives: String,
+    /// The names they declare.
+    names: HashSet<String>,
+    /// The scope's own `rigor:` statements (with the names they declare) and chains.
+    items: Vec<Item>,
+}
+
+enum Item {
+    Directive(String, Vec<String>),
+    Chain(Chain),
+}
+
+/// The derivation made from a scope, as it is written.
+struct Build<'a> {
+    /// The derivation.
+    deriv: String,
+    /// Its chains.
+    placed: Vec<Placed>,
+    /// Names declared in the derivation.
+    declared: HashSet<String>,
+    /// Names the document itself declared or defined (not those the linter assumed).
+    known: HashSet<String>,
+    /// Names the scope's chains have used so far.
+    seen: HashSet<String>,
+    /// Names the scope writes with a derivative somewhere: functions of time.
+    time: &'a HashSet<String>,
+    /// Names the linter declares with `unknowns`: the facts determine them.
+    solve: &'a HashSet<String>,
+}
+
+impl Scope {
+    /// A new scope under the document's `rigor:` statements so far.
+    fn under(directives: &str, names: &HashSet<String>) -> Scope {
+        Scope {
+            directives: directives.to_string(),
+            names: names.clone(),
+            items: Vec::new(),
+        }
+    }
+
+    /// The derivation made from the scope.
+    fn build<'a>(
+        &self,
+        doc: &str,
+        time: &'a HashSet<String>,
+        solve: &'a HashSet<String>,
+    ) -> Build<'a> {
+        let mut b = Build {
+            deriv: self.directives.clone(),
+            placed: Vec::new(),
+            declared: self.names.clone(),
+            known: self.names.clone(),
+            seen: HashSet::new(),
+            time,
+            solve,
+        };
+        for item in &self.items {
+            match item {
+                Item::Directive(text, names) => {
+                    b.deriv.push_str(text);
+                    b.deriv.push('\n');
+                    b.declared.extend(names.iter().cloned());
+                    b.known.extend(names.iter().cloned());
+                }
+                Item::Chain(chain) => place(chain, doc, &mut b),
+            }
+        }
+        b
+    }
+
+    /// Checks the scope's derivation and gives each chain its verdict. A name the
+    /// linter assumed (no `rigor:` comment declares it) that the facts determine is
+    /// then declared with `unknowns` and the scope checked again: in notes, letters are
+    /// not declared as given quantities, so `N` found from `N - m g cos(beta) = 0` is
+    /// solved for, not held fixed.
+    fn close(self, name: &str, doc: &str, opts: &Options, out: &mut Vec<ChainReport>) {
+        let mut time = HashSet::new();
+        for item in &self.items {
+            if let Item::Chain(c) = item {
+                let mut names = Vec::new();
+                free(&c.first, &mut Vec::new(), &mut names);
+                for l in &c.links {
+                    free(&l.rhs, &mut Vec::new(), &mut names);
+                }
+                time.extend(
+                    names
+                        .iter()
+                        .filter(|n| n.ends_with('\''))
+                        .map(|n| n.trim_end_matches('\'').to_string()),
+                );
+            }
+        }
+        let mut solve = HashSet::new();
+        for round in 0..3 {
+            let b = self.build(doc, &time, &solve);
+            if b.placed.is_empty() {
+                return;
+            }
+            let checked = check_source(name, &b.deriv, opts, &MemoryResolver::new());
+            let more: Vec<String> = checked
+                .diagnostics
+                .iter()
+                .filter_map(|d| d.primary.as_ref().and_then(|(_, hint)| determined(hint)))
+                .filter(|n| !b.known.contains(n) && !solve.contains(n))
+                .collect();
+            if more.is_empty() || round == 2 {
+                for p in &b.placed {
+                    let mut report = verdict(&checked, p);
+                    for d in &mut report.diagnostics {
+                        d.message = document_lines(&d.message, &b.deriv, &b.placed, doc);
+                    }
+                    let tail = (report.verdict == Verdict::NeedsContext)
+                        .then(|| verified_tail(&checked, p))
+                        .flatten();
+                    out.push(report);
+                    out.extend(tail);
+                }
+                return;
+            }
+            solve.extend(more);
+        }
+    }
+}
+
+/// The name the checker found the facts determine, from its hint "with `unknowns F`
+/// this step follows".
+fn determined(hint: &str) -> Option<String> {
+    let rest = hint.strip_prefix("with `unknowns ")?;
+    let name = rest.strip_suffix("` this step follows")?;
+    Some(name.to_string())
+}
+
+/// A link after the first of a chain.
+struct Later {
+    /// Where it is in the document (from its left side to the end of its right side).
+    span: Span,
+    /// Where its right side starts.
+    rhs: usize,
+    /// The symbols it brings in that nothing before it in the scope used.
+    fresh: Vec<String>,
+    /// Whether every symbol of the chain up to it is one the document declared or defined.
+    firm: bool,
+}
+
+/// Checks the chains of `doc`. Each heading starts a new scope: notes reuse letters
+/// from one section to the next (R a radius, then a reaction), so what one section
+/// defines or states is not a fact of the next; `rigor:` statements hold throughout.
 pub fn lint(name: &str, doc: &str, kind: DocKind, opts: &Options) -> LintReport {
     let mut report = LintReport {
         path: name.to_string(),
         source: doc.to_string(),
         chains: Vec::new(),
     };
-    let mut deriv = String::new();
-    let mut placed: Vec<Placed> = Vec::new();
-    let mut declared: HashSet<String> = HashSet::new();
-    // Names the document itself declared or defined (not those the linter assumed).
-    let mut known: HashSet<String> = HashSet::new();
+    let mut directives = String::new();
+    let mut names: HashSet<String> = HashSet::new();
+    let mut scope = Scope::default();
     // The last expression of the previous chain: a display starting with `=` goes on.
     let mut last: Option<Expr> = None;
     let popts = ParseOptions {
@@ -94,98 +246,165 @@ pub fn lint(name: &str, doc: &str, kind: DocKind, opts: &Options) -> LintReport 
     };
     for piece in pieces(doc, kind) {
         match piece {
+            Piece::Heading => {
+                scope.close(name, doc, opts, &mut report.chains);
+                scope = Scope::under(&directives, &names);
+                last = None;
+            }
+            // `<!-- rigor: ## Sliding -->`: a heading the notes do not show.
+            Piece::Directive(text) if text.starts_with('#') => {
+                scope.close(name, doc, opts, &mut report.chains);
+                scope = Scope::under(&directives, &names);
+                last = None;
+            }
             Piece::Directive(text) => {
                 if !parses(&text) {
                     continue;
                 }
-                for w in text.split_whitespace() {
-                    let w = w
-                        .trim_matches(|c: char| !c.is_alphanumeric() && c != '_')
-                        .to_string();
-                    declared.insert(w.clone());
-                    known.insert(w);
-                }
-                deriv.push_str(&text);
-                deriv.push('\n');
+                let words: Vec<String> = text
+                    .split_whitespace()
+                    .map(|w| {
+                        w.trim_matches(|c: char| !c.is_alphanumeric() && c != '_')
+                            .to_string()
+                    })
+                    .collect();
+                names.extend(words.iter().cloned());
+                directives.push_str(&text);
+                directives.push('\n');
+                scope.items.push(Item::Directive(text, words));
             }
             Piece::Math { text, start } => {
                 for (line, off) in extract::chain_lines(&text) {
-                    let at = start + off;
-                    let lead = line.trim_start();
-                    let continues = lead.starts_with(['=', '<', '>'])
-                        || ["\\approx", "\\le", "\\ge", "\\neq", "\\simeq"]
-                            .iter()
-                            .any(|r| lead.starts_with(r));
-                    let parsed = match (&last, continues) {
-                        (Some(prev), true) => {
-                            parse_latex_links(line, at, &popts).map(|links| Chain {
-                                first: prev.clone(),
-                                links,
-                            })
-                        }
-                        _ => parse_latex_chain(line, at, &popts),
-                    };
-                    match parsed {
-                        Err(e) => {
-                            last = None;
-                            report.chains.push(ChainReport {
-                                span: e.span,
-                                verdict: Verdict::NeedsContext,
-                                diagnostics: vec![Diagnostic::error(
-                                    "E0001", e.message, e.span, "",
-                                )],
-                            });
-                        }
-                        Ok(chain) => {
-                            last = chain.links.last().map(|l| l.rhs.clone());
-                            place(
-                                &chain,
-                                doc,
-                                &mut deriv,
-                                &mut placed,
-                                (&mut declared, &mut known),
-                            );
+                    for (rel, within) in extract::relations(line) {
+                        let at = start + off + within;
+                        let (unread, parsed) = read(rel, at, last.as_ref(), &popts);
+                        report.chains.extend(unread);
+                        match parsed {
+                            None => last = None,
+                            Some(chain) => {
+                                last = chain.links.last().map(|l| l.rhs.clone());
+                                let body = directives
+                                    .lines()
+                                    .any(|l| l.trim_start().starts_with("body"));
+                                let (prose, rest) = if body {
+                                    (None, Some(chain))
+                                } else {
+                                    over_prose_mass(chain)
+                                };
+                                report.chains.extend(prose);
+                                scope.items.extend(rest.map(Item::Chain));
+                            }
                         }
                     }
                 }
             }
         }
     }
-    let checked = check_source(name, &deriv, opts, &MemoryResolver::new());
-    for p in placed {
-        report.chains.push(verdict(&checked, &p));
-    }
+    scope.close(name, doc, opts, &mut report.chains);
     report.chains.sort_by_key(|c| c.span.start);
     report
 }
 
+/// A message about the derivation made from the document, with its `line N` (lines of
+/// that derivation) turned into the lines of the document they came from.
+fn document_lines(message: &str, deriv: &str, placed: &[Placed], doc: &str) -> String {
+    let doc_line = |n: usize| -> Option<usize> {
+        let line_start = deriv
+            .split_inclusive('\n')
+            .take(n.checked_sub(1)?)
+            .map(str::len)
+            .sum::<usize>();
+        let line_end = line_start + deriv.get(line_start..)?.find('\n').unwrap_or(0);
+        let at = placed
+            .iter()
+            .flat_map(|p| p.first.iter().chain(p.rest.iter()).chain(p.stated.iter()))
+            .flatten()
+            .find(|(at, _, _)| *at >= line_start && *at <= line_end)?
+            .1;
+        Some(doc.get(..at)?.matches('\n').count() + 1)
+    };
+    let mut out = String::new();
+    let mut said: Vec<String> = Vec::new();
+    let mut rest = message;
+    while let Some(i) = rest.find("line ") {
+        out.push_str(&rest[..i + 5]);
+        rest = &rest[i + 5..];
+        let digits = rest.bytes().take_while(u8::is_ascii_digit).count();
+        let mapped = rest[..digits].parse().ok().and_then(doc_line);
+        let primes = rest[digits..].bytes().take_while(|b| *b == b'\'').count();
+        let cited = mapped.map(|l| format!("{l}{}", "'".repeat(primes)));
+        match cited {
+            // A line the notes cite twice (a claim and what it states) is named once;
+            // a line of the `rigor:` statements is not a line of the notes.
+            Some(c) if !said.contains(&c) => {
+                out.push_str(&c);
+                said.push(c);
+            }
+            _ if out.ends_with(", line ") => out.truncate(out.len() - ", line ".len()),
+            _ if out.ends_with("(line ") && rest[digits + primes..].starts_with(", ") => {
+                out.truncate(out.len() - "line ".len());
+                rest = &rest[digits + primes + 2..];
+                continue;
+            }
+            _ => out.push_str(&rest[..digits + primes]),
+        }
+        rest = &rest[digits + primes..];
+    }
+    out.push_str(rest);
+    out
+}
+
 /// Writes a chain into the derivation: its new symbols declared, then as a `let` (a
 /// lone new symbol on the left) and a claim of the rest, or as a claim.
-fn place(
-    chain: &Chain,
-    doc: &str,
-    deriv: &mut String,
-    placed: &mut Vec<Placed>,
-    (declared, known): (&mut HashSet<String>, &mut HashSet<String>),
-) {
+fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
+    let Build {
+        deriv,
+        placed,
+        declared,
+        known,
+        seen,
+        time,
+        solve,
+    } = b;
     let mut names = Vec::new();
     free(&chain.first, &mut Vec::new(), &mut names);
     if let Some(l) = chain.links.first() {
         free(&l.rhs, &mut Vec::new(), &mut names);
     }
-    let firm = names
-        .iter()
-        .all(|n| known.contains(n.trim_end_matches('\'')) || n == "t");
-    for l in chain.links.iter().skip(1) {
+    let is_known = |n: &String| known.contains(n.trim_end_matches('\'')) || n == "t";
+    let firm = names.iter().all(is_known);
+    // A relation between positions of two or more moving things (`x = -theta R`) is a
+    // constraint: it holds at every instant, so its derivatives do too. Anything else
+    // stated (a law with accelerations, a value at release) holds at the instant only.
+    let bases: HashSet<&str> = names.iter().map(|n| n.trim_end_matches('\'')).collect();
+    let constraint = !names.iter().any(|n| n.ends_with('\''))
+        && bases.iter().filter(|n| time.contains(**n)).count() >= 2;
+    // A later link that brings in a symbol nothing before it in the scope used relies
+    // on something the notes say in prose (`dA = 2 pi r dr`), not on the algebra.
+    let mut later = Vec::new();
+    for (prev, l) in chain.links.iter().zip(chain.links.iter().skip(1)) {
+        let before = names.len();
         free(&l.rhs, &mut Vec::new(), &mut names);
+        let fresh: Vec<String> = names[before..]
+            .iter()
+            .filter(|n| !seen.contains(n.trim_end_matches('\'')) && !is_known(n))
+            .cloned()
+            .collect();
+        later.push(Later {
+            span: Span::new(prev.rhs.span.start, l.span.end),
+            rhs: l.rhs.span.start,
+            fresh,
+            firm: names.iter().all(is_known),
+        });
     }
+    seen.extend(names.iter().map(|n| n.trim_end_matches('\'').to_string()));
     let defines = match &chain.first.kind {
         ExprKind::Sym(n) if !declared.contains(n.trim_end_matches('\'')) && !n.ends_with('\'') => {
             Some(n.clone())
         }
         _ => None,
     };
-    declare(names, defines.as_ref(), deriv, declared);
+    declare(names, defines.as_ref(), deriv, declared, (time, solve));
     let text = |s: Span| doc.get(s.start..s.end).unwrap_or("");
     let last = chain.links.last().map_or(chain.first.span, |l| l.span);
     let chain_span = chain.first.span.to(last);
@@ -219,6 +438,7 @@ fn place(
         chain.first.span,
         Span::new(link0.span.start, link0.span.end),
     ];
+    let stated;
     let (first, states) = match &defines {
         Some(s) => {
             declared.insert(s.clone());
@@ -232,20 +452,29 @@ fn place(
                 declared.remove(s);
                 return;
             }
+            stated = Some(vec![(deriv.len() + 7, chain.first.span.start, 0)]);
             deriv.push_str(&stmt);
             (None, true)
         }
         None => {
             // Checked as a claim; then, holding or not, taken as what the notes state.
             let claim = write("claim", &first_link, deriv);
-            let _ = write("given", &first_link, deriv);
+            let kw = if constraint { "constraint" } else { "given" };
+            stated = write(kw, &first_link, deriv);
             (claim, matches!(chain.first.kind, ExprKind::Sym(_)))
         }
     };
     let rest = rest_span.and_then(|r| write("claim", &[link0.rhs.span, r], deriv));
+    // Then each later link is taken as stated too, as the first is: one that does not
+    // follow states something new (`m y'' = 0`), which later chains may use.
+    for (prev, l) in chain.links.iter().zip(chain.links.iter().skip(1)) {
+        let _ = write("given", &[prev.rhs.span, l.span], deriv);
+    }
     placed.push(Placed {
         first,
         rest,
+        stated,
+        later,
         span: chain_span,
         states,
         firm,
@@ -258,32 +487,39 @@ fn parses(stmt: &str) -> bool {
     crate::syntax::parse_file(stmt, &ParseOptions::default()).is_ok()
 }
 
-/// Declares the chain's new symbols: `time` for those written with primes.
+/// Declares the chain's new symbols: `time` for those the scope writes with a
+/// derivative, `unknowns` for those the facts determine, `symbols` for the rest.
 fn declare(
     names: Vec<String>,
     defines: Option<&String>,
     deriv: &mut String,
     declared: &mut HashSet<String>,
+    (time, solve): (&HashSet<String>, &HashSet<String>),
 ) {
-    let mut time = Vec::new();
-    let mut reals = Vec::new();
+    let mut kinds: [(&str, Vec<String>); 3] = [
+        ("symbols", Vec::new()),
+        ("unknowns", Vec::new()),
+        ("time", Vec::new()),
+    ];
     for n in names {
         let base = n.trim_end_matches('\'').to_string();
         if declared.contains(&base) || Some(&base) == defines || base == "t" || base == "dm" {
             continue;
         }
         declared.insert(base.clone());
-        if n.ends_with('\'') {
-            time.push(base);
+        let k = if time.contains(&base) {
+            2
+        } else if solve.contains(&base) {
+            1
         } else {
-            reals.push(base);
+            0
+        };
+        kinds[k].1.push(base);
+    }
+    for (kw, list) in kinds {
+        if !list.is_empty() {
+            deriv.push_str(&format!("{kw} {}\n", list.join(" ")));
         }
-    }
-    if !reals.is_empty() {
-        deriv.push_str(&format!("symbols {}\n", reals.join(" ")));
-    }
-    if !time.is_empty() {
-        deriv.push_str(&format!("time {}\n", time.join(" ")));
     }
 }
 
@@ -387,9 +623,19 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
         diagnostics,
     };
     if let Some(part) = &p.rest {
-        let (s, d) = part_outcome(checked, part, p.span);
+        let (s, mut d) = part_outcome(checked, part, p.span);
         if d.iter().any(|x| refuted.contains(&x.code)) {
-            return report(Verdict::Failed, d);
+            if d.iter()
+                .any(|x| refuted.contains(&x.code) && later_is_a_mistake(p, x))
+            {
+                return report(Verdict::Failed, d);
+            }
+            for x in d.iter_mut().filter(|x| refuted.contains(&x.code)) {
+                x.message = later_needs(p, x);
+                x.code = "E0302";
+            }
+            first_diags.extend(d);
+            return report(Verdict::NeedsContext, first_diags);
         }
         if holds(&s) && (first_ok || p.states) {
             return report(Verdict::Verified, Vec::new());
@@ -415,4 +661,144 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
         ));
     }
     report(Verdict::NeedsContext, first_diags)
+}
+
+/// The links of a chain that needs context, from the last that does not hold on: a
+/// chain of their own when they all hold (`dm = m dA/A = m 2 pi r dr/(pi R^2) = 2 m r
+/// dr/R^2`: the last link is algebra, and verified).
+fn verified_tail(checked: &FileReport, p: &Placed) -> Option<ChainReport> {
+    let (statuses, _) = part_outcome(checked, p.rest.as_ref()?, p.span);
+    if statuses.len() != p.later.len() {
+        return None;
+    }
+    let j = statuses.iter().rposition(|s| !s.is_verified())?;
+    let from = p.later.get(j)?.rhs;
+    (j + 1 < statuses.len()).then(|| ChainReport {
+        span: Span::new(from, p.span.end),
+        verdict: Verdict::Verified,
+        diagnostics: Vec::new(),
+    })
+}
+
+/// The later link a diagnostic is about.
+fn later_link<'a>(p: &'a Placed, d: &Diagnostic) -> Option<&'a Later> {
+    let at = d.primary.as_ref()?.0.start;
+    p.later
+        .iter()
+        .find(|l| at >= l.span.start && at < l.span.end)
+}
+
+/// Whether a later link that does not hold is a mistake rather than something the
+/// notes take from prose: every symbol of the chain up to it is one the document
+/// declared or defined; or it brings in nothing new and fails as algebra, without the
+/// relations the notes stated before (a step that contradicts only those states
+/// something new: `N - m g cos(beta) = m y'' = 0`).
+fn later_is_a_mistake(p: &Placed, d: &Diagnostic) -> bool {
+    let Some(link) = later_link(p, d) else {
+        return true;
+    };
+    link.firm || (link.fresh.is_empty() && !d.message.contains("(after using"))
+}
+
+/// Why a later link that does not hold needs context.
+fn later_needs(p: &Placed, d: &Diagnostic) -> String {
+    match later_link(p, d) {
+        Some(l) if !l.fresh.is_empty() => format!(
+            "needs context: this step brings in {}, which nothing before it defines; the notes must give {}",
+            l.fresh.join(", "),
+            if l.fresh.len() == 1 { "it" } else { "them" }
+        ),
+        _ => "needs context: this step does not follow from the relations before it; it states something new, which the notes must justify".into(),
+    }
+}
+
+/// Whether a tree integrates over `dm` with no body declared (`\int r^2\,dm`).
+fn prose_mass(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Call(Func::Int, args)
+            if args.len() == 2 && matches!(&args[1].kind, ExprKind::Sym(v) if v == "dm") =>
+        {
+            true
+        }
+        ExprKind::Call(_, args) => args.iter().any(prose_mass),
+        ExprKind::Neg(a) => prose_mass(a),
+        ExprKind::Bin(_, a, b) => prose_mass(a) || prose_mass(b),
+        ExprKind::Sym(_) | ExprKind::Num(_) | ExprKind::Pi => false,
+    }
+}
+
+/// A chain that integrates over a mass element the notes define in prose (`\int y^2
+/// dm = \int_{-L/2}^{L/2} y^2 \frac{m}{L}\,dy = \frac{mL^2}{12}`): its links up to the
+/// first expression free of such integrals need context; the links from there on are a
+/// chain of their own, checked as any other.
+fn over_prose_mass(chain: Chain) -> (Option<ChainReport>, Option<Chain>) {
+    let exprs: Vec<&Expr> = std::iter::once(&chain.first)
+        .chain(chain.links.iter().map(|l| &l.rhs))
+        .collect();
+    let Some(k) = exprs.iter().rposition(|e| prose_mass(e)) else {
+        return (None, Some(chain));
+    };
+    let upto = exprs.get(k + 1).map_or(exprs[k].span, |e| e.span);
+    let span = chain.first.span.to(upto);
+    let mut d = Diagnostic::error(
+        "E0302",
+        "needs context: it integrates over dm, a mass element the notes define in prose; \
+         declare the body in a `rigor: body …` comment to have it checked",
+        span,
+        "",
+    );
+    d.severity = crate::diag::Severity::Error;
+    let prose = ChainReport {
+        span,
+        verdict: Verdict::NeedsContext,
+        diagnostics: vec![d],
+    };
+    let rest = (k + 2 < exprs.len()).then(|| Chain {
+        first: exprs[k + 1].clone(),
+        links: chain.links[k + 1..].to_vec(),
+    });
+    (Some(prose), rest)
+}
+
+/// Reads one relation of a display (`prev`: the last expression before it, which a
+/// relation that starts with `=` goes on from). What cannot be read is reported as
+/// needing context; after a mass element with limits (`\int_0^R r^2\,dm`), the part
+/// from the next `=` on is read on its own.
+fn read(
+    rel: &str,
+    at: usize,
+    prev: Option<&Expr>,
+    popts: &ParseOptions,
+) -> (Vec<ChainReport>, Option<Chain>) {
+    let lead = rel.trim_start();
+    let continues = lead.starts_with(['=', '<', '>'])
+        || ["\\approx", "\\le", "\\ge", "\\neq", "\\simeq"]
+            .iter()
+            .any(|r| lead.starts_with(r));
+    let parsed = match (prev, continues) {
+        (Some(prev), true) => parse_latex_links(rel, at, popts).map(|links| Chain {
+            first: prev.clone(),
+            links,
+        }),
+        _ => parse_latex_chain(rel, at, popts),
+    };
+    let e = match parsed {
+        Ok(chain) => return (Vec::new(), Some(chain)),
+        Err(e) => e,
+    };
+    let unread = |span: Span, message: String| ChainReport {
+        span,
+        verdict: Verdict::NeedsContext,
+        diagnostics: vec![Diagnostic::error("E0001", message, span, "")],
+    };
+    let after = e.span.end.saturating_sub(at);
+    match extract::equals_after(rel, after) {
+        Some(eq) if e.message.contains("`dm` with limits") => {
+            let mut out = vec![unread(Span::new(at, at + eq), e.message)];
+            let (more, chain) = read(&rel[eq + 1..], at + eq + 1, None, popts);
+            out.extend(more);
+            (out, chain)
+        }
+        _ => (vec![unread(e.span, e.message)], None),
+    }
 }

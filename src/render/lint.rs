@@ -18,10 +18,10 @@ pub fn human(r: &LintReport) -> (String, String) {
     let (mut out, mut err) = (String::new(), String::new());
     for c in &r.chains {
         let (line, col) = line_col(&r.source, c.span.start);
-        let why = c
-            .diagnostics
-            .first()
-            .map_or(String::new(), |d| format!(": {}", d.message));
+        let why = c.diagnostics.first().map_or(String::new(), |d| {
+            let m = d.message.as_str();
+            format!(": {}", m.strip_prefix("needs context: ").unwrap_or(m))
+        });
         match c.verdict {
             Verdict::Verified => out.push_str(&format!("{}:{line}:{col}: verified\n", r.path)),
             Verdict::NeedsContext => {

@@ -184,7 +184,7 @@ pub fn feedback(r: &Row, reveal: Option<&str>) -> String {
                 let v = match l.status {
                     Status::Verified { .. } => "verified",
                     Status::Failed => "does not follow",
-                    Status::Undecided => "not decided",
+                    Status::Undecided => "not shown to follow",
                     Status::Error => "not read",
                     Status::NotChecked => "not checked (it cites a step that does not follow)",
                 };

@@ -58,10 +58,29 @@ fn the_handout_as_it_is_never_fails_and_verifies_what_holds_on_its_own() {
     assert_eq!(code, 0, "no chain of the handout is false:\n{out}{err}");
     let summary = out.lines().last().unwrap_or_default().to_string();
     assert!(
-        summary.starts_with("chains: 49, verified: 9, failed: 0"),
+        summary.starts_with("chains: 51, verified: 19, failed: 0"),
         "{summary}"
     );
     let report = out.replace(&doc.display().to_string(), "handout.md");
+    // The chains that hold on their own: the rod's I_G from the integral on, its I_O,
+    // the disk's dm (its algebra) and its integral, the trapdoor's relations.
+    for at in [
+        "68:23", "69:3", "73:24", "77:27", "167:113", "171:3", "182:3",
+    ] {
+        assert!(
+            report.contains(&format!("handout.md:{at}: verified")),
+            "{at} is verified:\n{report}"
+        );
+    }
+    // What rests on prose needs context, and says what.
+    assert!(
+        report.contains("handout.md:68:3: needs context: it integrates over dm"),
+        "{report}"
+    );
+    assert!(
+        report.contains("handout.md:73:3: needs context: this step brings in r, R"),
+        "{report}"
+    );
     insta::assert_snapshot!(report);
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -71,4 +90,84 @@ fn a_missing_document_is_bad_input() {
     let (_, err, code) = lint(&["tests/lint/no_such_notes.md"]);
     assert_eq!(code, 2);
     assert!(err.contains("no_such_notes.md"), "{err}");
+}
+
+/// The handout with its symbols declared in comments, and a comment heading where the
+/// notes change scenario without one (frictionless, then slipping).
+fn declared_handout(text: &str) -> String {
+    let mut out = String::new();
+    for line in text.lines() {
+        if line.starts_with("Sliding vs Rolling") {
+            out.push_str("<!-- rigor: ## Sliding -->\n\n");
+        }
+        if line.starts_with("Sliding and Rolling") {
+            out.push_str("<!-- rigor: ## Sliding and rolling -->\n\n");
+        }
+        out.push_str(line);
+        out.push('\n');
+        if line.starts_with("Example 5.1") {
+            out.push_str("\n<!-- rigor: symbols m g R I_G > 0 -->\n");
+            out.push_str("<!-- rigor: symbols 0 < beta < pi/2 -->\n");
+        }
+    }
+    out
+}
+
+#[test]
+fn the_handout_with_its_symbols_declared_verifies_the_rolling_and_sliding_accelerations() {
+    let seed =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/seeds/000_4a418897358df19b.txt");
+    let Ok(text) = std::fs::read_to_string(&seed) else {
+        panic!("the handout is at {}", seed.display());
+    };
+    let declared = declared_handout(&text);
+    assert_ne!(declared, text, "the comments went in");
+    let dir = std::env::temp_dir().join(format!("rigor-lint-decl-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temporary folder");
+    let doc = dir.join("handout.md");
+    std::fs::write(&doc, &declared).expect("written");
+    let (out, err, code) = lint(&[&doc.display().to_string()]);
+    let out = out.replace(&doc.display().to_string(), "handout.md");
+    assert_eq!(code, 0, "no chain of the handout is false:\n{out}{err}");
+    let line_of = |needle: &str| {
+        declared
+            .lines()
+            .position(|l| l.contains(needle))
+            .map(|i| i + 1)
+            .unwrap_or_else(|| panic!("{needle} is in the handout"))
+    };
+    // N = mg cos(beta); the rolling acceleration; the sliding x'' and theta''.
+    for needle in [
+        "$$N = mg \\cos \\beta$$",
+        "$$\\ddot{x} = -\\frac{g\\sin\\beta}{1 + I_G/\\left(mR^2\\right)}$$",
+        "$$\\ddot{x} = g \\left(\\mu \\cos \\beta - \\sin \\beta \\right)$$",
+        "$$\\ddot{\\theta} = \\frac{R\\mu mg \\cos \\beta}{I_G}$$",
+    ] {
+        let at = format!("handout.md:{}:3: verified", line_of(needle));
+        assert!(out.contains(&at), "{at}\n{out}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn headings_scope_what_the_notes_state_and_labels_and_arrows_split_relations() {
+    let (out, err, code) = lint(&["tests/lint/scopes_notes.md"]);
+    assert_eq!(code, 1, "{out}{err}");
+    // `\sum F_y \qquad N - mg = m\ddot{y} = 0`: the label is left out and `= 0` is
+    // stated, so `N = mg` follows.
+    assert!(out.contains("scopes_notes.md:13:3: verified"), "{out}");
+    // `R = 2mg \rightarrow R/2 = mg`: two relations, the second verified.
+    assert!(out.contains("scopes_notes.md:17:37: verified"), "{out}");
+    // `\ddot{y}_B` is the acceleration of y_B, found from the stated theta''.
+    assert!(out.contains("scopes_notes.md:25:3: verified"), "{out}");
+    // R is defined afresh under the second heading: not a contradiction of R = 2mg.
+    assert!(out.contains("scopes_notes.md:27:3: verified"), "{out}");
+    // The one slip fails, at its link.
+    assert!(out.contains("scopes_notes.md:31:3: FAILED"), "{out}");
+    assert!(err.contains("31:83"), "{err}");
+    assert!(
+        out.ends_with("chains: 13, verified: 8, failed: 1, needs context: 4\n"),
+        "{out}"
+    );
+    insta::assert_snapshot!(format!("{out}\n{err}"));
 }

@@ -600,7 +600,16 @@ impl P {
                     "ddot" => "''",
                     _ => "'''",
                 };
-                Ok(node(ExprKind::Sym(format!("{n}{primes}")), span.to(inner.span)))
+                // `\ddot{y}_B` is the acceleration of y_B: a subscript after the accent
+                // names the symbol, as `\ddot{y_B}` would.
+                let mut span = span.to(inner.span);
+                let mut name = n;
+                if !name.contains('_') && self.eat_ch('_') {
+                    let sub = self.subscript()?;
+                    name = format!("{name}_{sub}");
+                    span = span.to(self.last_span());
+                }
+                Ok(node(ExprKind::Sym(format!("{name}{primes}")), span))
             }
             "mathrm" | "text" | "textrm" | "operatorname" | "mathit" => self.upright(span),
             f => match FUNCS.iter().find(|x| x.0 == f) {

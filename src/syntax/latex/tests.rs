@@ -68,6 +68,9 @@ fn fractions_roots_and_functions() {
 fn derivatives_integrals_and_evaluation_brackets() {
     same(r"\ddot\theta", "theta''");
     same(r"\dot{x}", "x'");
+    same(r"\ddot{y}_B", "y_B''");
+    same(r"\ddot{y}_{G} L", "y_G''*L");
+    same(r"\dot{x}^2", "x'^2");
     same("x''", "x''");
     same(
         r"\int_{-L/2}^{L/2} y^2 \frac{m}{L}\,dy",
