@@ -5,6 +5,7 @@
 //! say), a chain whose left side is a lone new symbol defining it for later chains.
 
 mod extract;
+mod mass;
 
 use crate::check::{check_source, FileReport, MemoryResolver, Options, Status};
 use crate::diag::Diagnostic;
@@ -287,9 +288,9 @@ pub fn lint(name: &str, doc: &str, kind: DocKind, opts: &Options) -> LintReport 
                                     .lines()
                                     .any(|l| l.trim_start().starts_with("body"));
                                 let (prose, rest) = if body {
-                                    (None, Some(chain))
+                                    (Vec::new(), Some(chain))
                                 } else {
-                                    over_prose_mass(chain)
+                                    mass::over_prose_mass(chain, opts)
                                 };
                                 report.chains.extend(prose);
                                 scope.items.extend(rest.map(Item::Chain));
@@ -710,54 +711,6 @@ fn later_needs(p: &Placed, d: &Diagnostic) -> String {
         ),
         _ => "needs context: this step does not follow from the relations before it; it states something new, which the notes must justify".into(),
     }
-}
-
-/// Whether a tree integrates over `dm` with no body declared (`\int r^2\,dm`).
-fn prose_mass(e: &Expr) -> bool {
-    match &e.kind {
-        ExprKind::Call(Func::Int, args)
-            if args.len() == 2 && matches!(&args[1].kind, ExprKind::Sym(v) if v == "dm") =>
-        {
-            true
-        }
-        ExprKind::Call(_, args) => args.iter().any(prose_mass),
-        ExprKind::Neg(a) => prose_mass(a),
-        ExprKind::Bin(_, a, b) => prose_mass(a) || prose_mass(b),
-        ExprKind::Sym(_) | ExprKind::Num(_) | ExprKind::Pi => false,
-    }
-}
-
-/// A chain that integrates over a mass element the notes define in prose (`\int y^2
-/// dm = \int_{-L/2}^{L/2} y^2 \frac{m}{L}\,dy = \frac{mL^2}{12}`): its links up to the
-/// first expression free of such integrals need context; the links from there on are a
-/// chain of their own, checked as any other.
-fn over_prose_mass(chain: Chain) -> (Option<ChainReport>, Option<Chain>) {
-    let exprs: Vec<&Expr> = std::iter::once(&chain.first)
-        .chain(chain.links.iter().map(|l| &l.rhs))
-        .collect();
-    let Some(k) = exprs.iter().rposition(|e| prose_mass(e)) else {
-        return (None, Some(chain));
-    };
-    let upto = exprs.get(k + 1).map_or(exprs[k].span, |e| e.span);
-    let span = chain.first.span.to(upto);
-    let mut d = Diagnostic::error(
-        "E0302",
-        "needs context: it integrates over dm, a mass element the notes define in prose; \
-         declare the body in a `rigor: body …` comment to have it checked",
-        span,
-        "",
-    );
-    d.severity = crate::diag::Severity::Error;
-    let prose = ChainReport {
-        span,
-        verdict: Verdict::NeedsContext,
-        diagnostics: vec![d],
-    };
-    let rest = (k + 2 < exprs.len()).then(|| Chain {
-        first: exprs[k + 1].clone(),
-        links: chain.links[k + 1..].to_vec(),
-    });
-    (Some(prose), rest)
 }
 
 /// Reads one relation of a display (`prev`: the last expression before it, which a

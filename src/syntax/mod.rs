@@ -5,6 +5,7 @@ pub mod error;
 pub mod expr;
 pub mod file;
 pub mod latex;
+pub mod print;
 
 mod chain;
 mod lex;
