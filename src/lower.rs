@@ -277,7 +277,7 @@ impl<'a> Lowerer<'a> {
     }
 
     /// The sign a variable ranging between `a` and `b` (either order) has inside the range.
-    fn range_sign(&self, a: &Rat, b: &Rat) -> Sign {
+    pub fn range_sign(&self, a: &Rat, b: &Rat) -> Sign {
         let (sa, sb) = (self.signs().rat(a), self.signs().rat(b));
         let pos = |s: Sign| s == Sign::Pos;
         let neg = |s: Sign| s == Sign::Neg;
@@ -563,7 +563,7 @@ impl<'a> Lowerer<'a> {
     }
 
     /// Each coordinate of a body with the sign its range gives (abstract bodies: none).
-    fn coordinate_signs(&mut self, b: &Body) -> Vec<(String, Sign)> {
+    pub fn coordinate_signs(&mut self, b: &Body) -> Vec<(String, Sign)> {
         let mut out = Vec::new();
         match b {
             Body::Concrete { ranges, .. } => {

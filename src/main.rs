@@ -111,6 +111,10 @@ enum Command {
         /// The title of a book (default: "Worked solutions").
         #[arg(long)]
         title: Option<String>,
+        /// Fill in the work the file skipped (integrals evaluated, unknowns solved),
+        /// from the checker's own computation.
+        #[arg(long)]
+        steps: bool,
     },
     /// Check the chains of equations inside Markdown (`$$…$$`) and LaTeX documents.
     Lint {
@@ -153,7 +157,20 @@ enum Command {
         /// The title of a book (default: "Worked solutions").
         #[arg(long)]
         title: Option<String>,
+        /// Fill in the work the file skipped (integrals evaluated, unknowns solved),
+        /// from the checker's own computation.
+        #[arg(long)]
+        steps: bool,
     },
+}
+
+/// What `--steps` asks of a worked solution.
+fn detail(steps: bool) -> rigor::render::Detail {
+    if steps {
+        rigor::render::Detail::Steps
+    } else {
+        rigor::render::Detail::Written
+    }
 }
 
 fn main() -> ExitCode {
@@ -202,12 +219,28 @@ fn main() -> ExitCode {
             verbose,
             max_file_size,
         } => cli::check(&paths, format, verbose, timeout, max_file_size, &opts),
-        Command::Latex { file, o, title } => {
-            cli::document(&file, (o.as_deref(), title.as_deref()), true, &opts)
-        }
-        Command::Markdown { file, o, title } => {
-            cli::document(&file, (o.as_deref(), title.as_deref()), false, &opts)
-        }
+        Command::Latex {
+            file,
+            o,
+            title,
+            steps,
+        } => cli::document(
+            &file,
+            (o.as_deref(), title.as_deref()),
+            (true, detail(steps)),
+            &opts,
+        ),
+        Command::Markdown {
+            file,
+            o,
+            title,
+            steps,
+        } => cli::document(
+            &file,
+            (o.as_deref(), title.as_deref()),
+            (false, detail(steps)),
+            &opts,
+        ),
         Command::Lint { docs, format } => cli::lint(&docs, format, timeout, &opts),
         Command::Mark {
             reference,

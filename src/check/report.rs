@@ -104,6 +104,52 @@ pub struct LinkReport {
     pub units: Option<String>,
 }
 
+/// The work behind a link verified with the facts, kept for worked solutions that fill
+/// in the steps (`rigor latex --steps`): the unknowns the elimination solved, in order,
+/// and the two sides once their values are substituted. Expressions are plain text in
+/// rigor's syntax.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Working {
+    /// The link's span (as in [`LinkReport::span`]).
+    pub span: Span,
+    /// Each unknown solved, in the order of the elimination: a value may hold unknowns
+    /// solved after it, never one solved before.
+    pub solved: Vec<Solved>,
+    /// When the difference of the sides (after `solved`) is a multiple of one fact.
+    pub multiple: Option<Multiple>,
+    /// The left side after `where` and the substitutions.
+    pub lhs: String,
+    /// The right side after `where` and the substitutions.
+    pub rhs: String,
+}
+
+/// One unknown solved from one fact.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Solved {
+    /// The unknown (`F`, `x''`).
+    pub unknown: String,
+    /// Its value.
+    pub value: String,
+    /// The fact, as cited: `[Fx]`, `[noslip]''` (the constraint differentiated twice),
+    /// `line 12`.
+    pub fact: String,
+    /// The divisor of the solution, when the signs do not make it nonzero.
+    pub divisor: Option<String>,
+}
+
+/// The difference of a link's sides as `factor · fact`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Multiple {
+    /// The fact, as cited.
+    pub fact: String,
+    /// The fact's left side minus its right side (after the substitutions).
+    pub value: String,
+    /// The factor.
+    pub factor: String,
+    /// The difference of the link's sides (after the substitutions).
+    pub difference: String,
+}
+
 /// One `claim` statement.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ClaimReport {
@@ -142,6 +188,11 @@ pub struct FileReport {
     pub diagnostics: Vec<Diagnostic>,
     /// Whether the input was bad (syntax, undeclared symbol, unreadable file…): exit status 2.
     pub input_error: bool,
+    /// The work behind each link verified with the facts (see [`Working`]).
+    pub workings: Vec<Working>,
+    /// The definitions, bodies and declared signs at the end of the file, so that a
+    /// worked solution can show how the engine evaluates what the file wrote.
+    pub env: crate::lower::Env,
 }
 
 impl FileReport {

@@ -178,7 +178,13 @@ impl Checker<'_, '_> {
             }
             RelOp::Approx => self.decide_approx(input, &red, conditions),
         }?;
-        Ok(self.confirm(input, Some(&red), status))
+        let status = self.confirm(input, Some(&red), status);
+        if status.is_verified() {
+            self.report
+                .workings
+                .extend(working(span, &red, &self.env.signs));
+        }
+        Ok(status)
     }
 
     /// The facts the link may use, the elimination of unknowns, and what it used.
@@ -302,4 +308,57 @@ impl Checker<'_, '_> {
         };
         Err(self.not_equal(input, red, sides, &all_divs))
     }
+}
+
+/// The work behind a link verified with the facts: the unknowns solved and the sides
+/// after the substitutions (`None` when no fact was used).
+fn working(
+    span: Span,
+    red: &Reduced,
+    signs: &crate::normal::Assumptions,
+) -> Option<super::report::Working> {
+    use super::report::{Multiple, Solved, Working};
+    use crate::normal::print::plain;
+    let elim = red.elim.as_ref()?;
+    if elim.steps.is_empty() && elim.multiple_of.is_none() {
+        return None;
+    }
+    let solved = elim
+        .steps
+        .iter()
+        .map(|s| Solved {
+            unknown: super::solve::unknown_name(s.unknown),
+            value: plain(&s.value),
+            fact: s.fact.clone(),
+            divisor: s.divisor.as_ref().map(plain),
+        })
+        .collect();
+    let multiple = elim.multiple_of.as_ref().and_then(|name| {
+        let difference = apply_steps(&red.diff, &elim.steps, signs).ok()?;
+        // The links of one claim share its name: the fact is the one the difference
+        // is a multiple of (the simplest factor).
+        let (value, factor) = red
+            .used
+            .iter()
+            .filter(|f| &f.name == name)
+            .filter_map(|f| {
+                let value = apply_steps(&f.value, &elim.steps, signs).ok()?;
+                let factor = difference.div(&value).ok()?;
+                Some((value, factor))
+            })
+            .min_by_key(|(_, factor)| factor.atoms().len())?;
+        Some(Multiple {
+            fact: name.clone(),
+            value: plain(&value),
+            factor: plain(&factor),
+            difference: plain(&difference),
+        })
+    });
+    Some(Working {
+        span,
+        solved,
+        multiple,
+        lhs: plain(&red.ra),
+        rhs: plain(&red.rb),
+    })
 }

@@ -153,6 +153,7 @@ impl<'l, 'o> Checker<'l, 'o> {
                 .find(|d| d.severity == Severity::Error)
                 .map(|d| d.message.clone());
         }
+        self.report.env = std::mem::take(&mut self.env);
         (self.report, self.exports)
     }
 

@@ -364,11 +364,12 @@ pub fn check(
 }
 
 /// `rigor latex` / `rigor markdown`: renders even when a step fails (marked), exit 1 then.
-/// A folder gives one book of all its files.
+/// A folder gives one book of all its files. With [`Detail::Steps`](rigor::render::Detail)
+/// (`--steps`) the work the files skipped is filled in.
 pub fn document(
     file: &Path,
     (out, title): (Option<&Path>, Option<&str>),
-    latex: bool,
+    (latex, detail): (bool, rigor::render::Detail),
     opts: &ParseOptions,
 ) -> u8 {
     let options = rigor::check::Options {
@@ -378,7 +379,7 @@ pub fn document(
     let mut reports = rigor::files::check_paths(&[file.to_path_buf()], &options);
     if file.is_dir() {
         return match rigor::files::in_book_order(file, reports) {
-            Ok(reports) => book(&reports, (out, title), latex),
+            Ok(reports) => book(&reports, (out, title), (latex, detail)),
             Err(e) => {
                 errln!("error: {e}");
                 2
@@ -395,9 +396,9 @@ pub fn document(
         return 2;
     }
     let text = if latex {
-        rigor::render::latex::document(&report)
+        rigor::render::latex::document_with(&report, detail)
     } else {
-        rigor::render::markdown::document(&report)
+        rigor::render::markdown::document_with(&report, detail)
     };
     if !write_document(out, &text) {
         return 2;
@@ -416,12 +417,16 @@ pub fn document(
 
 /// A book of several files (already in order): written like one document; the exit
 /// status of the worst file.
-fn book(reports: &[FileReport], (out, title): (Option<&Path>, Option<&str>), latex: bool) -> u8 {
+fn book(
+    reports: &[FileReport],
+    (out, title): (Option<&Path>, Option<&str>),
+    (latex, detail): (bool, rigor::render::Detail),
+) -> u8 {
     let title = title.unwrap_or("Worked solutions");
     let text = if latex {
-        rigor::render::latex::book(reports, title)
+        rigor::render::latex::book_with(reports, title, detail)
     } else {
-        rigor::render::markdown::book(reports, title)
+        rigor::render::markdown::book_with(reports, title, detail)
     };
     if !write_document(out, &text) {
         return 2;

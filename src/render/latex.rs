@@ -7,8 +7,10 @@
 //! every formula comes from [`super::expr`], so any input gives a document that
 //! compiles.
 
-use super::solution::{build, Block, Inline, Just, Problem, Row};
+use super::solution::{build_with, Block, Inline, Just, Problem, Row};
+use super::steps::Work;
 use super::text::{latex_lines, latex_text};
+use super::Detail;
 use crate::check::report::FileReport;
 
 const PREAMBLE: &str = "\\documentclass[11pt]{article}
@@ -27,7 +29,14 @@ const PREAMBLE: &str = "\\documentclass[11pt]{article}
 /// follows the claim. A file that could not be read gives a short document listing
 /// its diagnostics.
 pub fn document(report: &FileReport) -> String {
-    let solution = build(report);
+    document_with(report, Detail::Written)
+}
+
+/// [`document`], with the work the file skipped filled in when `detail` is
+/// [`Detail::Steps`]: each filled-in piece is a quotation headed *Working*, after the
+/// statement it belongs to.
+pub fn document_with(report: &FileReport, detail: Detail) -> String {
+    let solution = build_with(report, detail);
     let mut out = String::from(PREAMBLE);
     out.push_str(&format!(
         "\\title{{{}}}\n\\author{{}}\n\\date{{}}\n\\begin{{document}}\n\\maketitle\n",
@@ -46,6 +55,12 @@ pub fn document(report: &FileReport) -> String {
 /// (`3.2`), and a `use` of another file of the book refers to its section and
 /// equations.
 pub fn book(reports: &[FileReport], title: &str) -> String {
+    book_with(reports, title, Detail::Written)
+}
+
+/// [`book`], with the work the files skipped filled in when `detail` is
+/// [`Detail::Steps`].
+pub fn book_with(reports: &[FileReport], title: &str, detail: Detail) -> String {
     let files = super::solution::book_numbers(reports);
     let mut out = String::from(PREAMBLE);
     out.push_str(&format!(
@@ -57,7 +72,7 @@ pub fn book(reports: &[FileReport], title: &str) -> String {
             section: k + 1,
             files: &files,
         };
-        let solution = super::solution::build_in(report, &place);
+        let solution = super::solution::build_in(report, &place, detail);
         let heading = inlines(&super::solution::rich(&solution.title));
         out.push_str(&format!("\n\\section{{{heading}}}\n"));
         for block in &solution.blocks {
@@ -167,7 +182,45 @@ fn block_latex(block: &Block, in_book: bool, out: &mut String) {
                 out.push_str("\\medskip\n");
             }
         }
+        Block::Working(work) => working_latex(work, out),
     }
+}
+
+/// Filled-in work: a quotation headed *Working*, each piece a sentence and an
+/// `align*` of its lines.
+fn working_latex(work: &[Work], out: &mut String) {
+    out.push_str("\\begin{quote}\n\\textit{Working.}\n");
+    for (k, w) in work.iter().enumerate() {
+        if k > 0 {
+            out.push_str("\\par\n");
+        }
+        out.push_str(&inlines(&w.lead));
+        out.push('\n');
+        if w.lines.is_empty() {
+            continue;
+        }
+        out.push_str("\\begin{align*}\n");
+        for (i, l) in w.lines.iter().enumerate() {
+            out.push_str(&format!("{} &{} {}", l.lhs, l.rel, l.rhs));
+            if !l.note.is_empty() {
+                out.push_str(" \\quad");
+                for part in &l.note {
+                    match part {
+                        Inline::Math(m) => out.push_str(&format!(" {m}")),
+                        Inline::Text(t) | Inline::Strong(t) | Inline::Code(t) => {
+                            out.push_str(&format!("\\text{{{}}}", text(t)))
+                        }
+                    }
+                }
+            }
+            if i + 1 < w.lines.len() {
+                out.push_str(" \\\\");
+            }
+            out.push('\n');
+        }
+        out.push_str("\\end{align*}\n");
+    }
+    out.push_str("\\end{quote}\n");
 }
 
 /// One line of an `align*`: `lhs &= rhs \quad\text{(by …)}`.

@@ -3,8 +3,10 @@
 //! as block quotes. The math is the same LaTeX as in [`super::latex`]; text inside
 //! `\text{…}` and `\tag{…}` is made safe for MathJax and KaTeX.
 
-use super::solution::{build, Block, Inline, Just, Problem, Row};
+use super::solution::{build_with, Block, Inline, Just, Problem, Row};
+use super::steps::Work;
 use super::text::{block_safe, markdown_inline, markdown_message, markdown_text, mathjax_text};
+use super::Detail;
 use crate::check::report::FileReport;
 
 /// The worked solution of a checked file as Markdown.
@@ -12,7 +14,14 @@ use crate::check::report::FileReport;
 /// Links that did not verify carry `\textbf{[not verified]}`, and after the claim
 /// each diagnostic follows as `> **not verified** (line N): message`.
 pub fn document(report: &FileReport) -> String {
-    let solution = build(report);
+    document_with(report, Detail::Written)
+}
+
+/// [`document`], with the work the file skipped filled in when `detail` is
+/// [`Detail::Steps`]: each filled-in piece is a block quote headed *Working*, after the
+/// statement it belongs to.
+pub fn document_with(report: &FileReport, detail: Detail) -> String {
+    let solution = build_with(report, detail);
     let mut out = format!("# {}\n", inlines(&super::solution::rich(&solution.title)));
     for block in &solution.blocks {
         out.push('\n');
@@ -25,6 +34,12 @@ pub fn document(report: &FileReport) -> String {
 /// one numbered section per file (`## 3. Title`), equations numbered by section (`3.2`)
 /// and a `use` of another file of the book a reference to its section and equations.
 pub fn book(reports: &[FileReport], title: &str) -> String {
+    book_with(reports, title, Detail::Written)
+}
+
+/// [`book`], with the work the files skipped filled in when `detail` is
+/// [`Detail::Steps`].
+pub fn book_with(reports: &[FileReport], title: &str, detail: Detail) -> String {
     let files = super::solution::book_numbers(reports);
     let solutions: Vec<_> = reports
         .iter()
@@ -34,7 +49,7 @@ pub fn book(reports: &[FileReport], title: &str) -> String {
                 section: k + 1,
                 files: &files,
             };
-            super::solution::build_in(r, &place)
+            super::solution::build_in(r, &place, detail)
         })
         .collect();
     let mut out = format!("# {}\n\n", inlines(&super::solution::rich(title)));
@@ -132,7 +147,52 @@ fn block_markdown(block: &Block, in_book: bool, out: &mut String) {
             }
             out.push_str("```\n");
         }
+        Block::Working(work) => {
+            for (k, w) in work.iter().enumerate() {
+                let head = if k == 0 { "*Working.* " } else { "" };
+                if k > 0 {
+                    out.push_str(">\n");
+                }
+                out.push_str(&format!("> {head}{}\n", block_safe(inlines(&w.lead))));
+                if let Some(math) = work_latex(w) {
+                    out.push_str(">\n> $$\n");
+                    for line in math.lines() {
+                        out.push_str(&format!("> {line}\n"));
+                    }
+                    out.push_str("> $$\n");
+                }
+            }
+        }
     }
+}
+
+/// The lines of a piece of filled-in work as an `aligned` environment (`None` without
+/// lines); text inside is safe for MathJax and KaTeX.
+pub(crate) fn work_latex(w: &Work) -> Option<String> {
+    if w.lines.is_empty() {
+        return None;
+    }
+    let mut out = String::from("\\begin{aligned}\n");
+    for (i, l) in w.lines.iter().enumerate() {
+        out.push_str(&format!("{} &{} {}", l.lhs, l.rel, l.rhs));
+        if !l.note.is_empty() {
+            out.push_str(" \\quad");
+            for part in &l.note {
+                match part {
+                    Inline::Math(m) => out.push_str(&format!(" {m}")),
+                    Inline::Text(t) | Inline::Strong(t) | Inline::Code(t) => {
+                        out.push_str(&format!("\\text{{{}}}", mathjax_text(t)))
+                    }
+                }
+            }
+        }
+        if i + 1 < w.lines.len() {
+            out.push_str(" \\\\");
+        }
+        out.push('\n');
+    }
+    out.push_str("\\end{aligned}");
+    Some(out)
 }
 
 /// The LaTeX of a displayed formula or claim (what goes between `$$` and `$$`), with

@@ -15,8 +15,21 @@ pub mod lint;
 pub mod mark;
 pub mod markdown;
 mod solution;
+mod steps;
 mod text;
 pub mod web;
+
+/// How much work a worked solution shows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Detail {
+    /// The file's own steps, as written.
+    #[default]
+    Written,
+    /// The file's steps with the work it skipped filled in from the checker's own
+    /// computation: integrals evaluated stage by stage, the unknowns a step was verified
+    /// with solved and substituted (`rigor latex --steps`).
+    Steps,
+}
 
 #[cfg(test)]
 mod tests;

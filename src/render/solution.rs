@@ -5,6 +5,8 @@
 //! and each renderer escapes it for its own output.
 
 use super::expr::{chain_latex_in, expr_latex_in, rel_latex, symbol, Ctx};
+use super::steps::{Steps, Work};
+use super::Detail;
 use crate::check::report::{ClaimReport, FileReport, Status};
 use crate::diag::{line_col, Diagnostic, Severity};
 use crate::syntax::ast::{
@@ -91,6 +93,9 @@ pub(crate) enum Block {
     },
     /// Diagnostics about the statement above.
     Problems(Vec<Problem>),
+    /// The work the statement above skipped, filled in from the checker's computation
+    /// (only with [`Detail::Steps`]).
+    Working(Vec<Work>),
     /// Rendered diagnostics (rustc style) of a file that could not be read.
     Listing(Vec<String>),
 }
@@ -151,8 +156,14 @@ pub(crate) fn rich(t: &str) -> Vec<Inline> {
     out
 }
 
-/// The worked solution of a report.
+/// The worked solution of a report, as written.
 pub(crate) fn build(report: &FileReport) -> Solution {
+    build_with(report, Detail::Written)
+}
+
+/// The worked solution of a report, with the work the file skipped filled in when
+/// `detail` asks for it.
+pub(crate) fn build_with(report: &FileReport, detail: Detail) -> Solution {
     let file_name = file_title(report);
     let Some(ast) = &report.ast else {
         let mut blocks = vec![Block::Paragraph(vec![
@@ -173,7 +184,7 @@ pub(crate) fn build(report: &FileReport) -> Solution {
             blocks,
         };
     };
-    Builder::new(report, ast).run(file_name)
+    Builder::new(report, ast, detail).run(file_name)
 }
 
 /// The title of a file without a `#` title: its name.
@@ -199,6 +210,8 @@ struct Builder<'a> {
     find: Vec<String>,
     /// Where the file sits in a book, if it is one section of several.
     place: Option<&'a Place<'a>>,
+    /// The work to fill in, with [`Detail::Steps`].
+    steps: Option<Steps<'a>>,
 }
 
 /// Equation numbers of a file's labelled givens, constraints and claims, in document
@@ -248,10 +261,10 @@ pub(crate) fn book_numbers(
 }
 
 /// The worked solution of a report as one section of a book.
-pub(crate) fn build_in(report: &FileReport, place: &Place<'_>) -> Solution {
+pub(crate) fn build_in(report: &FileReport, place: &Place<'_>, detail: Detail) -> Solution {
     match &report.ast {
         Some(ast) => {
-            let mut b = Builder::new(report, ast);
+            let mut b = Builder::new(report, ast, detail);
             b.place = Some(place);
             b.run(file_title(report))
         }
@@ -270,8 +283,9 @@ fn joined(base: &str, rel: &str) -> Option<String> {
 }
 
 impl<'a> Builder<'a> {
-    fn new(report: &'a FileReport, ast: &'a File) -> Builder<'a> {
+    fn new(report: &'a FileReport, ast: &'a File, detail: Detail) -> Builder<'a> {
         Builder {
+            steps: (detail == Detail::Steps).then(|| Steps::new(&report.env, ast)),
             report,
             ast,
             ctx: Ctx::from_file(ast),
@@ -622,6 +636,12 @@ impl<'a> Builder<'a> {
                     note: None,
                     tag: None,
                 });
+                if let Some(steps) = &mut self.steps {
+                    let work = steps.integrals(&[value], &self.ctx);
+                    if !work.is_empty() {
+                        self.blocks.push(Block::Working(work));
+                    }
+                }
             }
             StmtKind::Given { label, chain } | StmtKind::Constraint { label, chain } => {
                 let note = if matches!(stmt.kind, StmtKind::Given { .. }) {
@@ -646,6 +666,10 @@ impl<'a> Builder<'a> {
                     rows,
                     tag: label.as_ref().map(|l| self.number(&l.name)),
                 });
+                let work = self.claim_work(stmt, chain);
+                if !work.is_empty() {
+                    self.blocks.push(Block::Working(work));
+                }
             }
             StmtKind::Use {
                 labels, path, with, ..
@@ -708,6 +732,42 @@ impl<'a> Builder<'a> {
                 }
             })
             .collect()
+    }
+
+    /// The work a claim skipped (with [`Detail::Steps`]): for each link in turn, the
+    /// integrals it writes, worked, then the unknowns it was verified with.
+    fn claim_work(&mut self, stmt: &Stmt, chain: &Chain) -> Vec<Work> {
+        let Some(mut steps) = self.steps.take() else {
+            return Vec::new();
+        };
+        let claim = self.claim_report(stmt);
+        let several = chain.links.len() > 1;
+        let mut work = Vec::new();
+        for (k, link) in chain.links.iter().enumerate() {
+            let exprs: Vec<&crate::syntax::ast::Expr> = if k == 0 {
+                vec![&chain.first, &link.rhs]
+            } else {
+                vec![&link.rhs]
+            };
+            work.extend(steps.integrals(&exprs, &self.ctx));
+            let Some(report) = claim.and_then(|c| c.links.get(k)) else {
+                continue;
+            };
+            if !report.status.is_verified() {
+                continue;
+            }
+            let found = self.report.workings.iter().find(|w| w.span == report.span);
+            let number = |l: &str| self.number(l);
+            if let Some(w) = found {
+                let line = several.then_some(k + 1);
+                work.extend(
+                    super::steps::elimination(w, link.op, line, &self.ctx, &number)
+                        .unwrap_or_default(),
+                );
+            }
+        }
+        self.steps = Some(steps);
+        work
     }
 
     /// The report of the claim `stmt`: by span, else by line.

@@ -3,7 +3,7 @@
 
 use super::expr::{chain_latex, expr_latex, expr_latex_in, number_latex, Ctx};
 use super::text::{latex_text, markdown_text, mathjax_text};
-use super::{github, human, json, latex, markdown};
+use super::{github, human, json, latex, markdown, Detail};
 use crate::check::report::{ClaimReport, FileReport, Justification, LinkReport, Status};
 use crate::diag::{Diagnostic, Severity};
 use crate::syntax::ast::{Item, Span, StmtKind};
@@ -266,7 +266,7 @@ fn report_with(path: &str, src: &str, statuses: Vec<Status>) -> FileReport {
         ast: Some(ast),
         claims,
         diagnostics,
-        input_error: false,
+        ..Default::default()
     }
 }
 
@@ -541,15 +541,113 @@ fn every_derivation_compiles() {
             .unwrap_or_default();
         let md = markdown::document(&r);
         let tex = latex::document(&r);
+        let md_steps = markdown::document_with(&r, Detail::Steps);
+        let tex_steps = latex::document_with(&r, Detail::Steps);
         assert!(md.starts_with("# "), "{name}: {md}");
-        for doc in [&md, &tex] {
+        for doc in [&md, &tex, &md_steps, &tex_steps] {
             assert!(
                 !doc.contains("not verified"),
                 "{name}: a verified file is marked:\n{doc}"
             );
         }
         compile(&name, &tex);
+        compile(&format!("{name}-steps"), &tex_steps);
     }
+}
+
+#[test]
+fn steps_fill_in_integrals_from_the_engine() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("derivations");
+    let opts = crate::check::Options::default();
+    let r = crate::files::check_file(&dir.join("rod.deriv"), &dir, &opts);
+    let written = latex::document(&r);
+    let tex = latex::document_with(&r, Detail::Steps);
+    // The mass element substituted, the antiderivative between its bounds, the value.
+    let work = "\\int_{\\mathit{rod}} y^{2} \\, dm &= \\int_{-\\frac{L}{2}}^{\\frac{L}{2}} y^{2}\\,\\frac{m}{L} \\, dy \\\\\n \
+                &= \\Big[\\frac{m\\,y^{3}}{3 L}\\Big]_{y=-\\frac{L}{2}}^{y=\\frac{L}{2}} \\\\\n \
+                &= \\frac{L^{2}\\,m}{24} - \\left(-\\frac{L^{2}\\,m}{24}\\right) \\\\\n \
+                &= \\frac{L^{2}\\,m}{12}\n";
+    assert!(tex.contains(work), "{tex}");
+    assert!(!written.contains("\\Big[\\frac{m\\,y^{3}}{3 L}") && !written.contains("Working"));
+    // Worked once: `int(y^2, rod)` again, or as `int(y^2 m/L, y, -L/2, L/2)`, is not.
+    let bracket = "\\Big[\\frac{m\\,y^{3}}{3 L}\\Big]_{y=-\\frac{L}{2}}";
+    assert_eq!(tex.matches(bracket).count(), 1, "{tex}");
+    // A box: each coordinate in turn, innermost first.
+    let r = crate::files::check_file(&dir.join("inertia_tensor.deriv"), &dir, &opts);
+    let tex = latex::document_with(&r, Detail::Steps);
+    assert!(
+        tex.contains("integrating over $z$, then $y$, then $x$:"),
+        "{tex}"
+    );
+    assert!(
+        tex.contains("\\Big]_{z=-\\frac{c}{2}}^{z=\\frac{c}{2}} \\, dy \\, dx"),
+        "{tex}"
+    );
+    // An abstract body: moments, then its mass and its first moments.
+    let r = crate::files::check_file(&dir.join("parallel_axis.deriv"), &dir, &opts);
+    let md = markdown::document_with(&r, Detail::Steps);
+    assert!(md.contains("> *Working.* By linearity, in moments of $B$, with $\\int_{B} 1 \\, dm = m$ and, the body being centred, $\\int_{B} x \\, dm = \\int_{B} y \\, dm = 0$:"), "{md}");
+    assert!(
+        md.contains("&= a^{2}\\,m + b^{2}\\,m + \\int_{B} y^{2} \\, dm + \\int_{B} x^{2} \\, dm"),
+        "{md}"
+    );
+}
+
+#[test]
+fn steps_show_the_unknowns_solved_and_substituted() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("derivations");
+    let r = crate::files::check_file(
+        &dir.join("trapdoor.deriv"),
+        &dir,
+        &crate::check::Options::default(),
+    );
+    let tex = latex::document_with(&r, Detail::Steps);
+    // [thdd]: theta'' solved from [MA] (equation 2), then both sides agree.
+    assert!(tex.contains("Line 1: solving the facts this step uses for the unknown:\n\\begin{align*}\n\\ddot{\\theta} &= -\\frac{3\\,g}{2 L} \\quad\\text{from (2)}\n\\end{align*}\n\\par\nSubstituted, both sides are\n"), "{tex}");
+    // [faster]: two unknowns in turn, and the inequality once they are substituted.
+    assert!(
+        tex.contains("\\ddot{y}_{B} &= L\\,\\ddot{\\theta} \\quad\\text{from (6)}"),
+        "{tex}"
+    );
+    assert!(
+        tex.contains("Substituted, the step reads\n\\begin{align*}\n\\frac{3 g}{2} &> g\n"),
+        "{tex}"
+    );
+    // A constraint differentiated, cited by its equation number.
+    let r = crate::files::check_file(
+        &dir.join("rolling_cylinder.deriv"),
+        &dir,
+        &crate::check::Options::default(),
+    );
+    let md = markdown::document_with(&r, Detail::Steps);
+    assert!(md.contains("\\text{by (1) differentiated twice}"), "{md}");
+    assert!(
+        !md.contains("[noslip]") && !md.contains("onslope"),
+        "labels never show: {md}"
+    );
+}
+
+#[test]
+fn steps_of_hostile_files_stay_escaped() {
+    let src = "# T & 100% {x}\nsymbols m L > 0\nunknowns F\nbody rod: dm = m/L dy, y from 0 to L\n\
+               given [Fx] F = m L\nclaim [two] 2 F = 2 m L by [Fx]\n\
+               claim int(y, rod) = m L/2 by {sure} & $x$ \\ ~ ^ _ # \\end{document}\n";
+    let r = crate::check::check_source(
+        "h.deriv",
+        src,
+        &crate::check::Options::default(),
+        &crate::check::MemoryResolver::new(),
+    );
+    assert!(r.ok(), "{:?}", r.diagnostics);
+    let tex = latex::document_with(&r, Detail::Steps);
+    assert_eq!(tex.matches("\\textit{Working.}").count(), 2, "{tex}");
+    assert!(
+        tex.contains("(by \\{sure\\} \\& \\$x\\$ \\textbackslash{}"),
+        "{tex}"
+    );
+    compile("hostile-steps", &tex);
+    let md = markdown::document_with(&r, Detail::Steps);
+    assert_eq!(md.matches("> *Working.*").count(), 2, "{md}");
 }
 
 /// Compiles `tex` with pdflatex and asserts success, and that no line is overfull by
@@ -675,6 +773,9 @@ fn a_folder_is_one_book_in_its_order_with_cross_references() {
         reports[0].path
     );
     compile("handout-book", &latex::book(&reports, "Handout 5"));
+    let steps = latex::book_with(&reports, "Handout 5", Detail::Steps);
+    assert!(steps.contains("\\textit{Working.}"));
+    compile("handout-book-steps", &steps);
 }
 
 #[test]
@@ -707,6 +808,13 @@ fn checked_documents_compile() {
             );
         }
         compile(&format!("checked-{name}"), &tex);
+        // The filled-in work of every fixture, readable or not, renders (the two
+        // failing fixtures with snapshots in tests/it/documents.rs also compile).
+        let steps = latex::document_with(r, Detail::Steps);
+        if ["rod_factor_two", "rolling_cylinder_wrong_sign"].contains(&name.as_str()) {
+            compile(&format!("checked-{name}-steps"), &steps);
+        }
+        all.push_str(&markdown::document_with(r, Detail::Steps));
         all.push_str(&markdown::document(r));
         all.push_str(&human::report(r, true));
         all.push_str(&github::report(r));

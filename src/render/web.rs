@@ -117,6 +117,13 @@ fn block(b: &Block) -> Value {
             "items": ps.iter().map(problem).collect::<Vec<_>>(),
         }),
         Block::Listing(lines) => json!({ "kind": "listing", "lines": lines }),
+        Block::Working(work) => json!({
+            "kind": "working",
+            "items": work
+                .iter()
+                .map(|w| json!({ "parts": parts(&w.lead), "latex": super::markdown::work_latex(w) }))
+                .collect::<Vec<_>>(),
+        }),
     }
 }
 

@@ -512,6 +512,30 @@ fn markdown_renders() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+#[test]
+fn steps_fill_in_the_work() {
+    let bracket = "\\Big[\\frac{m\\,y^{3}}{3 L}\\Big]_{y=-\\frac{L}{2}}^{y=\\frac{L}{2}}";
+    for format in ["latex", "markdown"] {
+        let plain = run(&[format, "derivations/rod.deriv"]);
+        expect_code(&plain, 0, format);
+        let steps = run(&[format, "derivations/rod.deriv", "--steps"]);
+        expect_code(&steps, 0, "--steps");
+        assert!(steps.stdout.contains(bracket), "{}", steps.stdout);
+        assert!(steps.stdout.contains("Working."), "{}", steps.stdout);
+        assert!(!plain.stdout.contains(bracket) && !plain.stdout.contains("Working."));
+    }
+    let r = run(&["latex", "derivations", "--steps", "--title", "Handout"]);
+    expect_code(&r, 0, "a book with --steps");
+    assert!(r.stdout.contains("\\tableofcontents") && r.stdout.contains("Working."));
+    let r = run(&[
+        "markdown",
+        "tests/check/fail/rod_factor_two.deriv",
+        "--steps",
+    ]);
+    expect_code(&r, 1, "--steps of a failing file");
+    assert!(r.stdout.contains("**not verified**") && r.stdout.contains("*Working.*"));
+}
+
 /// SHA-256 of every file under `dir`, by path.
 fn hashes(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
     let mut out = BTreeMap::new();
