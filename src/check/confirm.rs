@@ -177,8 +177,11 @@ impl Checker<'_, '_> {
         let (Ok(a), Ok(b)) = guard::eval_both(input.lhs_expr, &input.link.rhs, env, &point) else {
             return Ok(());
         };
-        let scale = 1f64.max(a.mid.abs()).max(b.mid.abs());
-        let equal_there = (a.mid - b.mid).abs() <= 1e-9 * scale && a.rad + b.rad <= 1e-10 * scale;
+        // Equal there only when the guard's enclosures overlap and are tight relative to
+        // the values themselves (tiny values, `exp(-30 y)`, are not equal to each other
+        // for being small).
+        let scale = a.mid.abs().max(b.mid.abs());
+        let equal_there = (a.mid - b.mid).abs() <= a.rad + b.rad && a.rad + b.rad <= 1e-10 * scale;
         if equal_there {
             let mut d = disagreement(input, &point, a, b);
             d.notes[1] = "rigor's exact argument says the sides differ here; please report this derivation as a bug in rigor".into();

@@ -4,6 +4,8 @@ mod action;
 mod calculus;
 mod check;
 mod cli;
+mod differential;
+mod documents;
 mod equiv;
 mod fuzz;
 mod guard;

@@ -6,6 +6,9 @@ use crate::normal::{norm, norm_in};
 use proptest::prelude::*;
 use rigor::decide::{decide, Verdict};
 use rigor::lower::Env;
+use rigor::normal::gcd::div_exact;
+use rigor::normal::mono::Mono;
+use rigor::normal::pack::Packing;
 use rigor::normal::print::plain;
 use rigor::normal::{Assumptions, Poly, Rat, Q};
 
@@ -78,7 +81,8 @@ fn int_poly() -> impl Strategy<Value = String> {
 }
 
 /// A rational function of `x`, `a`, `b`: sums, differences, products (written and
-/// juxtaposed), quotients by constants and by `x^2 + 1`, small powers, `sqrt(x^2)`.
+/// juxtaposed), quotients by constants, by `x^2 + 1` and by any other expression
+/// (which may vanish somewhere, or everywhere), powers with negative exponents.
 fn expr() -> impl Strategy<Value = String> {
     let leaf = prop_oneof![
         rational(),
@@ -95,7 +99,10 @@ fn expr() -> impl Strategy<Value = String> {
             (inner.clone(), inner.clone()).prop_map(|(p, q)| format!("({p}) * ({q})")),
             (inner.clone(), 1i64..=5).prop_map(|(p, d)| format!("({p})/{d}")),
             inner.clone().prop_map(|p| format!("({p})/(x^2 + 1)")),
+            (inner.clone(), inner.clone()).prop_map(|(p, q)| format!("({p})/({q})")),
+            (inner.clone(), poly()).prop_map(|(p, q)| format!("({p})/({q})")),
             (inner.clone(), 0u32..=3).prop_map(|(p, k)| format!("({p})^{k}")),
+            (inner.clone(), 1u32..=3).prop_map(|(p, k)| format!("({p})^(-{k})")),
             inner.clone().prop_map(|p| format!("-({p})")),
         ]
     })
@@ -258,20 +265,30 @@ proptest! {
     #[test]
     fn trigonometric_identities(p in small_poly(), q in small_poly(), k in int_poly()) {
         prop_assert_eq!(plain_of(&format!("sin({p})^2 + cos({p})^2")), "1");
-        // Integer coefficients and no constant term only: with p = x/2 or p = 1,
-        // sin(2 p) is not related to sin(p) (see normal::half_angles).
-        let p = format!("x ({k})");
+        // Integer multiples of unrelated arguments have the same normal form.
+        let px = format!("x ({k})");
+        let qy = q.replace('x', "y");
         prop_assert_eq!(
-            plain_of(&format!("sin(2 ({p}))")),
-            plain_of(&format!("2 sin({p}) cos({p})"))
+            plain_of(&format!("sin(2 ({px}))")),
+            plain_of(&format!("2 sin({px}) cos({px})"))
         );
-        // The second argument is in y: rigor does not relate sin(u) to sin(u/2)
-        // (see normal::half_angles), so the two arguments must be unrelated.
-        let q = q.replace('x', "y");
         prop_assert_eq!(
-            plain_of(&format!("cos(({p}) + ({q}))")),
-            plain_of(&format!("cos({p}) cos({q}) - sin({p}) sin({q})"))
+            plain_of(&format!("cos(({px}) + ({qy}))")),
+            plain_of(&format!("cos({px}) cos({qy}) - sin({px}) sin({qy})"))
         );
+        // Any arguments: rational coefficients, constant terms, arguments that are
+        // half or a shift of one another (`x/2` and `x`). Their normal forms may
+        // differ (sines of different multiples of one angle); `decide` rewrites both
+        // in the common base angle.
+        for (a, b) in [
+            (format!("sin(2 ({p}))"), format!("2 sin({p}) cos({p})")),
+            (format!("cos(2 ({p}))"), format!("1 - 2 sin({p})^2")),
+            (format!("cos(({p}) + ({q}))"), format!("cos({p}) cos({q}) - sin({p}) sin({q})")),
+            (format!("sin(({p}) - ({q}))"), format!("sin({p}) cos({q}) - cos({p}) sin({q})")),
+            (format!("tan({p}) cos({p})"), format!("sin({p})")),
+        ] {
+            prop_assert!(is_equal(&a, &b), "{} = {}", a, b);
+        }
     }
 
     #[test]
@@ -335,4 +352,79 @@ fn value_at_substitutes_exactly() {
     let pt = [(2, 1), (3, 2), (-1, 3)];
     assert_eq!(value_at("x^2 + a b", &pt), Some(Q::new(7.into(), 2.into())));
     assert_eq!(value_at("1/(x - 2)", &pt), None);
+}
+
+/// A polynomial with integer coefficients in `atoms` atoms (ids from 0), exponents from
+/// `exps`: small ones pack into `u128` bit fields, large ones (2^20 and more) or many
+/// atoms do not, and take the general path of multiplication and exact division.
+fn raw_poly(atoms: u32, exps: impl Strategy<Value = u32> + Clone) -> impl Strategy<Value = Poly> {
+    let term = (
+        prop::collection::vec((0..atoms, exps), 0..4),
+        (-4i64..=4).prop_filter("nonzero", |c| *c != 0),
+    );
+    prop::collection::vec(term, 1..5).prop_map(|ts| {
+        Poly::from_terms(
+            ts.into_iter()
+                .filter_map(|(m, c)| Some((Mono::from_pairs(m)?, Q::from_integer(c.into()))))
+                .collect(),
+        )
+    })
+}
+
+/// Polynomials of the three kinds: packed, huge exponents, many atoms.
+fn any_poly() -> impl Strategy<Value = Poly> {
+    prop_oneof![
+        raw_poly(4, 0u32..4),
+        raw_poly(3, prop_oneof![0u32..4, (1u32 << 20)..(1u32 << 26)]),
+        raw_poly(60, 0u32..16),
+    ]
+}
+
+proptest! {
+    #![proptest_config(crate::config(512))]
+
+    /// `(a b) / b = a` and a division with a remainder fails (or is exact), on every
+    /// path: packed monomials, and monomials whose fields do not fit in 128 bits.
+    #[test]
+    fn exact_division_recovers_the_factor_on_every_path(a in any_poly(), b in any_poly(), r in any_poly()) {
+        prop_assume!(!b.is_zero());
+        let Ok(ab) = a.mul(&b) else { return Ok(()) };
+        prop_assert_eq!(div_exact(&ab, &b), Ok(Some(a.clone())), "({:?}) ({:?}) / ({:?})", a, b, b);
+        // With a remainder the division is not exact, unless b divides it. (Not with
+        // huge exponents: the general path then runs for as many steps as the
+        // exponents are large before it finds the remainder.)
+        let huge = |p: &Poly| p.terms().iter().any(|(m, _)| m.degree() > 1 << 16);
+        if huge(&ab) || huge(&r) {
+            return Ok(());
+        }
+        let abr = ab.add(&r);
+        if let Ok(Some(q)) = div_exact(&abr, &b) {
+            prop_assert_eq!(q.mul(&b).ok(), Some(abr));
+        }
+    }
+}
+
+#[test]
+fn the_exact_division_property_reaches_the_general_path() {
+    // Exponents of 2^20 and more in three atoms need more than 128 bits of fields,
+    // as do 60 atoms with exponents up to 15.
+    let big = |e: u32| {
+        Poly::from_terms(vec![
+            (
+                Mono::from_pairs(vec![(0, e), (1, e), (2, e), (3, e), (4, e)]).unwrap(),
+                Q::from_integer(1.into()),
+            ),
+            (Mono::one(), Q::from_integer(1.into())),
+        ])
+    };
+    let (a, b) = (big(1 << 25), big(1 << 24));
+    assert!(Packing::for_quotient(&a.mul(&b).unwrap(), &b).is_none());
+    assert_eq!(div_exact(&a.mul(&b).unwrap(), &b), Ok(Some(a)));
+    let wide = Poly::from_terms(
+        (0..60)
+            .map(|i| (Mono::atom(i, 15), Q::from_integer(1.into())))
+            .collect(),
+    );
+    assert!(Packing::for_quotient(&wide, &wide).is_none());
+    assert_eq!(div_exact(&wide, &wide), Ok(Some(Poly::one())));
 }
