@@ -230,5 +230,21 @@ pub fn check_source(
         cache: HashMap::new(),
         opts: options,
     };
-    check_in(name, text, &mut loader).0
+    let mut report = check_in(name, text, &mut loader).0;
+    // Several failed steps: the first may explain the rest (one mistake, one error).
+    if report.failed() >= 2 {
+        if let Ok(ast) = parse_file(&report.source, &options.parse) {
+            let recheck = |changed: &str| {
+                let mut loader = Loader {
+                    resolver,
+                    stack: loader.stack[..1].to_vec(),
+                    cache: HashMap::new(),
+                    opts: options,
+                };
+                check_in(name, changed, &mut loader).0
+            };
+            super::roots::one_mistake(&mut report, &ast, &recheck);
+        }
+    }
+    report
 }

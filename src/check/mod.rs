@@ -30,6 +30,7 @@ mod imports;
 mod reading;
 mod relations;
 pub mod report;
+mod roots;
 pub mod scope;
 mod signs;
 pub mod solve;

@@ -380,24 +380,7 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
     let bases: HashSet<&str> = names.iter().map(|n| n.trim_end_matches('\'')).collect();
     let constraint = !names.iter().any(|n| n.ends_with('\''))
         && bases.iter().filter(|n| time.contains(**n)).count() >= 2;
-    // A later link that brings in a symbol nothing before it in the scope used relies
-    // on something the notes say in prose (`dA = 2 pi r dr`), not on the algebra.
-    let mut later = Vec::new();
-    for (prev, l) in chain.links.iter().zip(chain.links.iter().skip(1)) {
-        let before = names.len();
-        free(&l.rhs, &mut Vec::new(), &mut names);
-        let fresh: Vec<String> = names[before..]
-            .iter()
-            .filter(|n| !seen.contains(n.trim_end_matches('\'')) && !is_known(n))
-            .cloned()
-            .collect();
-        later.push(Later {
-            span: Span::new(prev.rhs.span.start, l.span.end),
-            rhs: l.rhs.span.start,
-            fresh,
-            firm: names.iter().all(is_known),
-        });
-    }
+    let later = later_links(chain, &mut names, seen, &is_known);
     seen.extend(names.iter().map(|n| n.trim_end_matches('\'').to_string()));
     let defines = match &chain.first.kind {
         ExprKind::Sym(n) if !declared.contains(n.trim_end_matches('\'')) && !n.ends_with('\'') => {
@@ -711,6 +694,35 @@ fn later_needs(p: &Placed, d: &Diagnostic) -> String {
         ),
         _ => "needs context: this step does not follow from the relations before it; it states something new, which the notes must justify".into(),
     }
+}
+
+/// The links after the first, each with the symbols it brings in (`names`: those of
+/// the links before, extended with its own). A later link that brings in a symbol
+/// nothing before it in the scope used relies on something the notes say in prose
+/// (`dA = 2 pi r dr`), not on the algebra.
+fn later_links(
+    chain: &Chain,
+    names: &mut Vec<String>,
+    seen: &HashSet<String>,
+    is_known: &dyn Fn(&String) -> bool,
+) -> Vec<Later> {
+    let mut later = Vec::new();
+    for (prev, l) in chain.links.iter().zip(chain.links.iter().skip(1)) {
+        let before = names.len();
+        free(&l.rhs, &mut Vec::new(), names);
+        let fresh: Vec<String> = names[before..]
+            .iter()
+            .filter(|n| !seen.contains(n.trim_end_matches('\'')) && !is_known(n))
+            .cloned()
+            .collect();
+        later.push(Later {
+            span: Span::new(prev.rhs.span.start, l.span.end),
+            rhs: l.rhs.span.start,
+            fresh,
+            firm: names.iter().all(is_known),
+        });
+    }
+    later
 }
 
 /// Reads one relation of a display (`prev`: the last expression before it, which a

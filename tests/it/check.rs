@@ -135,7 +135,7 @@ fn expectation(first_line: &str) -> Option<(String, usize)> {
 }
 
 #[test]
-fn fixtures_with_an_expectation_fail_with_that_code_on_that_line() {
+fn fixtures_with_an_expectation_fail_with_that_code_on_that_line_and_only_there() {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/check/fail");
     let mut checked = 0;
     let mut entries: Vec<PathBuf> = std::fs::read_dir(&dir)
@@ -172,6 +172,14 @@ fn fixtures_with_an_expectation_fail_with_that_code_on_that_line() {
             path.display(),
             first.message
         );
+        // One mistake, one error: what follows from it is a note, not a second error.
+        let errors: Vec<&str> = r
+            .diagnostics
+            .iter()
+            .filter(|d| d.severity == rigor::diag::Severity::Error)
+            .map(|d| d.message.as_str())
+            .collect();
+        assert_eq!(errors.len(), 1, "{}: {errors:?}", path.display());
         checked += 1;
     }
     assert!(
@@ -251,4 +259,38 @@ fn one_mistake_is_one_error_and_what_cites_it_is_not_checked() {
         .map(|(s, _)| r.source[..s.start].lines().count());
     assert_eq!(line, Some(8));
     assert_eq!((r.failed(), r.not_checked()), (1, 1));
+}
+
+#[test]
+fn two_independent_mistakes_stay_two_errors_and_a_consequence_becomes_a_note() {
+    let check = |text: &str| {
+        rigor::check_source(
+            "two.deriv",
+            text,
+            &rigor::check::Options::default(),
+            &rigor::check::MemoryResolver::new(),
+        )
+    };
+    let errors = |r: &FileReport| {
+        r.diagnostics
+            .iter()
+            .filter(|d| d.severity == rigor::diag::Severity::Error)
+            .count()
+    };
+    let base = "symbols m L > 0\nbody rod_end: dm = m/L dy, y from 0 to L/2\nlet I_O = int(y^2, rod_end)\nclaim [IO] I_O = int(y^2 m/L, y, 0, L)\n  = m L^2/3\n";
+    // A later step that holds with I_O = m L^2/3 is a consequence of the first mistake.
+    let r = check(&format!("{base}claim [twice] 2 I_O = 2 m L^2/3\n"));
+    assert_eq!(errors(&r), 1, "{:?}", r.diagnostics);
+    assert!(
+        r.diagnostics.iter().any(|d| d.code == "N0206"),
+        "{:?}",
+        r.diagnostics
+    );
+    assert!(!r.ok());
+    // A slip that has nothing to do with I_O is a second mistake.
+    let r = check(&format!(
+        "{base}claim [slip] m L^2/12 + m L^2/4 = m L^2/6\n"
+    ));
+    assert_eq!(errors(&r), 2, "{:?}", r.diagnostics);
+    assert!(!r.diagnostics.iter().any(|d| d.code == "N0206"));
 }
