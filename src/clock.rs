@@ -48,4 +48,9 @@ impl Deadline {
     pub fn passed(&self) -> bool {
         (self.clock)() > self.at
     }
+
+    /// The time left before the deadline (zero once it has passed).
+    pub fn remaining(&self) -> Duration {
+        self.at.saturating_sub((self.clock)())
+    }
 }

@@ -145,6 +145,10 @@ enum Command {
         /// Output format.
         #[arg(long, value_enum, default_value_t = MarkFormat::Human)]
         format: MarkFormat,
+        /// Time budget of one submission, in seconds: once spent, its remaining steps
+        /// are undecided (the row says so), and the rest of the class is unaffected.
+        #[arg(long, default_value_t = 30.0)]
+        budget: f64,
     },
     /// Write a derivation as a Markdown worked solution.
     Markdown {
@@ -187,11 +191,7 @@ fn main() -> ExitCode {
     let opts = rigor::syntax::ParseOptions {
         max_depth: cli.max_depth,
     };
-    let timeout = if cli.timeout.is_finite() && cli.timeout > 0.0 {
-        std::time::Duration::from_secs_f64(cli.timeout.min(1e6))
-    } else {
-        std::time::Duration::from_secs(10)
-    };
+    let timeout = seconds(cli.timeout, 10.0);
     if !matches!(cli.command, Command::Check { .. }) {
         rigor::normal::poly::set_deadline(rigor::clock::Deadline::after(
             timeout,
@@ -249,13 +249,25 @@ fn main() -> ExitCode {
             feedback,
             reveal,
             format,
+            budget,
         } => cli::mark(
             (&reference, &submissions),
             (summary, feedback.as_deref(), reveal),
             format,
-            timeout,
+            (timeout, seconds(budget, 30.0)),
             &opts,
         ),
     };
     ExitCode::from(code)
+}
+
+/// A duration given in seconds on the command line (`default` when it is not a
+/// positive number).
+fn seconds(given: f64, default: f64) -> std::time::Duration {
+    let s = if given.is_finite() && given > 0.0 {
+        given
+    } else {
+        default
+    };
+    std::time::Duration::from_secs_f64(s.min(1e6))
 }

@@ -35,7 +35,29 @@ impl Checker<'_, '_> {
             line,
             links: Vec::new(),
         };
-        let deadline = Deadline::after(self.loader.opts.timeout, self.loader.opts.clock);
+        let mut budget = self.loader.opts.timeout;
+        if let Some((file, reported)) = self.file_deadline.as_mut() {
+            if file.passed() {
+                // The file's budget is spent: this claim and the rest are undecided,
+                // said once.
+                if !*reported {
+                    *reported = true;
+                    self.report.diagnostics.push(
+                        crate::diag::Diagnostic::error(
+                            "E0902",
+                            "not checked: the time budget for this file ran out here",
+                            span,
+                            "not checked",
+                        )
+                        .note("this step and the ones after it are undecided; the file's budget is set by `--budget`"),
+                    );
+                }
+                self.push_undecided_links(claim, chain, Status::Undecided);
+                return;
+            }
+            budget = budget.min(file.remaining());
+        }
+        let deadline = Deadline::after(budget, self.loader.opts.clock);
         crate::normal::poly::set_deadline(deadline);
         self.timed_out = false;
         self.claim_inner(label, chain, where_, claim, deadline);

@@ -20,6 +20,9 @@ pub struct Options {
     pub parse: ParseOptions,
     /// Wall-clock budget per claim (only where there is a clock).
     pub timeout: Duration,
+    /// Wall-clock budget for all the claims of one file (`rigor mark` gives each
+    /// submission one): once spent, the file's remaining claims are undecided.
+    pub file_budget: Option<Duration>,
     /// Largest file read, in bytes (by resolvers that read files).
     pub max_file_size: u64,
     /// The clock the time budget is measured on; `None`: no budget.
@@ -36,6 +39,7 @@ impl Default for Options {
         Options {
             parse: ParseOptions::default(),
             timeout: Duration::from_secs(10),
+            file_budget: None,
             max_file_size: 10_000_000,
             clock: crate::clock::system(),
             corrupt_for_tests: false,

@@ -62,11 +62,19 @@ pub struct Checker<'l, 'o> {
     results: Vec<Label>,
     /// Declared units of symbols; once any is declared, relations are checked for them.
     pub(super) units: HashMap<String, crate::units::Dim>,
+    /// When the file's own time budget runs out (`Options::file_budget`), and whether
+    /// that has been reported.
+    pub(super) file_deadline: Option<(crate::clock::Deadline, bool)>,
 }
 
 impl<'l, 'o> Checker<'l, 'o> {
     /// A checker that will fill `report`.
     pub fn new(report: FileReport, name: String, loader: &'l mut Loader<'o>) -> Checker<'l, 'o> {
+        let file_deadline = loader
+            .opts
+            .file_budget
+            .and_then(|b| crate::clock::Deadline::after(b, loader.opts.clock))
+            .map(|d| (d, false));
         Checker {
             report,
             name,
@@ -86,6 +94,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             small: Vec::new(),
             results: Vec::new(),
             units: HashMap::new(),
+            file_deadline,
         }
     }
 

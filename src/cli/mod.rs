@@ -325,6 +325,7 @@ pub fn check(
         parse: *opts,
         timeout,
         max_file_size,
+        file_budget: None,
         clock: rigor::clock::system(),
         corrupt_for_tests: false,
     };
@@ -538,7 +539,7 @@ pub fn mark(
     (reference, submissions): (&Path, &[std::path::PathBuf]),
     (summary, feedback, reveal): (bool, Option<&Path>, bool),
     format: crate::MarkFormat,
-    timeout: std::time::Duration,
+    (timeout, budget): (std::time::Duration, std::time::Duration),
     opts: &ParseOptions,
 ) -> u8 {
     use rigor::files::FsResolver;
@@ -546,6 +547,11 @@ pub fn mark(
         parse: *opts,
         timeout,
         ..rigor::check::Options::default()
+    };
+    // Each submission gets its own budget; the reference is checked without one.
+    let sub_options = rigor::check::Options {
+        file_budget: Some(budget),
+        ..options.clone()
     };
     let ref_dir = reference
         .parent()
@@ -584,7 +590,7 @@ pub fn mark(
                     &ref_report,
                     &expected,
                     (&name, &text),
-                    &options,
+                    &sub_options,
                     (&ref_resolver, &sub_resolver),
                 )
             }

@@ -121,3 +121,64 @@ fn a_reference_that_does_not_verify_is_refused() {
     assert_eq!(code, 2);
     assert!(err.contains("does not verify"), "{err}");
 }
+
+#[test]
+fn a_submission_that_spends_its_budget_is_a_row_with_the_reason_and_the_class_goes_on() {
+    // Each `(u - k)^6000 = (u - k)^6000` needs far more than the 0.3 s budget; the
+    // correct submission beside it is marked as usual.
+    let (out, err, code) = mark(&[
+        "--reference",
+        "tests/mark/reference.deriv",
+        "tests/mark/slow/slow.deriv",
+        "tests/mark/class/01_correct.deriv",
+        "--format",
+        "csv",
+        "--budget",
+        "0.3",
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        out.contains("tests/mark/slow/slow.deriv,2,5,"),
+        "the two ordinary steps verified, the three slow ones not:\n{out}"
+    );
+    assert!(out.contains(",undecided,2,2"), "{out}");
+    assert!(
+        out.contains("tests/mark/class/01_correct.deriv,2,2,,,2,2"),
+        "{out}"
+    );
+}
+
+#[test]
+fn the_file_budget_stops_the_remaining_claims_once_and_says_so() {
+    use rigor::check::{check_source, MemoryResolver, Options};
+    use std::sync::atomic::{AtomicU64, Ordering};
+    use std::time::Duration;
+    // A clock that moves on by 1 µs each time it is read.
+    static NOW: AtomicU64 = AtomicU64::new(0);
+    fn ticking() -> Duration {
+        Duration::from_micros(NOW.fetch_add(1, Ordering::SeqCst))
+    }
+    let text = "symbols a b\nclaim [one] (a + b)^2 = a^2 + 2 a b + b^2\nclaim [two] a + b = b + a\nclaim [three] a = a\n";
+    let with = |budget| Options {
+        file_budget: budget,
+        clock: Some(ticking as fn() -> Duration),
+        ..Options::default()
+    };
+    let free = check_source("f.deriv", text, &with(None), &MemoryResolver::new());
+    assert!(free.ok(), "{:?}", free.diagnostics);
+    let spent = check_source(
+        "f.deriv",
+        text,
+        &with(Some(Duration::ZERO)),
+        &MemoryResolver::new(),
+    );
+    assert!(!spent.ok());
+    assert_eq!(spent.verified(), 0);
+    assert_eq!(spent.undecided(), 3);
+    let budget: Vec<_> = spent
+        .diagnostics
+        .iter()
+        .filter(|d| d.message.contains("time budget for this file"))
+        .collect();
+    assert_eq!(budget.len(), 1, "said once: {:?}", spent.diagnostics);
+}
