@@ -86,21 +86,68 @@ pub fn line_col(src: &str, at: usize) -> (usize, usize) {
     (line, col)
 }
 
+/// Where the lines of a text start: line and column lookups by binary search, so that a
+/// report of many diagnostics on a large file is not quadratic.
+pub struct LineIndex<'a> {
+    src: &'a str,
+    starts: Vec<usize>,
+}
+
+impl<'a> LineIndex<'a> {
+    /// The index of `src`.
+    pub fn new(src: &'a str) -> LineIndex<'a> {
+        let starts = std::iter::once(0)
+            .chain(src.match_indices('\n').map(|(i, _)| i + 1))
+            .collect();
+        LineIndex { src, starts }
+    }
+
+    /// The text indexed.
+    pub fn text(&self) -> &'a str {
+        self.src
+    }
+
+    /// 1-based line and column (in characters) of byte offset `at`, as [`line_col`].
+    pub fn line_col(&self, at: usize) -> (usize, usize) {
+        let mut at = at.min(self.src.len());
+        while !self.src.is_char_boundary(at) {
+            at -= 1;
+        }
+        let line = self.starts.partition_point(|&s| s <= at).max(1);
+        let start = self.starts[line - 1];
+        (line, self.src[start..at].chars().count() + 1)
+    }
+
+    /// The text of 1-based line `line`, without its line ending.
+    pub fn line(&self, line: usize) -> &'a str {
+        let Some(&start) = self.starts.get(line.saturating_sub(1)) else {
+            return "";
+        };
+        let end = self.starts.get(line).map_or(self.src.len(), |e| e - 1);
+        self.src.get(start..end.max(start)).unwrap_or("")
+    }
+}
+
 /// Renders a diagnostic against its source, without colour.
 pub fn render(d: &Diagnostic, path: &str, src: &str) -> String {
+    render_in(d, path, &LineIndex::new(src))
+}
+
+/// Renders a diagnostic against an indexed source (for many diagnostics of one file).
+pub fn render_in(d: &Diagnostic, path: &str, idx: &LineIndex<'_>) -> String {
     let mut out = format!("{}[{}]: {}\n", d.severity.as_str(), d.code, d.message);
     if let Some((span, label)) = &d.primary {
-        let (line, col) = line_col(src, span.start);
+        let (line, col) = idx.line_col(span.start);
         let gutter = line.to_string().len();
         let pad = " ".repeat(gutter);
         out.push_str(&format!("{pad}--> {path}:{line}:{col}\n"));
         out.push_str(&format!("{pad} |\n"));
-        let text = src.lines().nth(line - 1).unwrap_or("");
+        let text = idx.line(line);
         let text = text.trim_end_matches('\r');
         out.push_str(&format!("{line} | {text}\n"));
         let line_chars = text.chars().count();
         let start = col - 1;
-        let (end_line, end_col) = line_col(src, span.end.max(span.start));
+        let (end_line, end_col) = idx.line_col(span.end.max(span.start));
         let end = if end_line == line {
             end_col - 1
         } else {
@@ -123,7 +170,7 @@ pub fn render(d: &Diagnostic, path: &str, src: &str) -> String {
         let gutter = d
             .primary
             .as_ref()
-            .map_or(1, |(s, _)| line_col(src, s.start).0.to_string().len());
+            .map_or(1, |(s, _)| idx.line_col(s.start).0.to_string().len());
         out.push_str(&format!("{} = {}\n", " ".repeat(gutter), n));
     }
     out

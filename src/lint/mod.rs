@@ -8,7 +8,7 @@ mod extract;
 mod mass;
 
 use crate::check::{check_source, FileReport, MemoryResolver, Options, Status};
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, LineIndex};
 use crate::syntax::ast::{Chain, Expr, ExprKind, Func, Span};
 use crate::syntax::latex::{parse_latex_chain, parse_latex_links};
 use crate::syntax::ParseOptions;
@@ -159,7 +159,12 @@ impl Scope {
     /// then declared with `unknowns` and the scope checked again: in notes, letters are
     /// not declared as given quantities, so `N` found from `N - m g cos(beta) = 0` is
     /// solved for, not held fixed.
-    fn close(self, name: &str, doc: &str, opts: &Options, out: &mut Vec<ChainReport>) {
+    fn close(
+        &self,
+        (name, doc): (&str, &LineIndex<'_>),
+        opts: &Options,
+        out: &mut Vec<ChainReport>,
+    ) {
         let mut time = HashSet::new();
         for item in &self.items {
             if let Item::Chain(c) = item {
@@ -178,7 +183,7 @@ impl Scope {
         }
         let mut solve = HashSet::new();
         for round in 0..3 {
-            let b = self.build(doc, &time, &solve);
+            let b = self.build(doc.text(), &time, &solve);
             if b.placed.is_empty() {
                 return;
             }
@@ -239,7 +244,9 @@ pub fn lint(name: &str, doc: &str, kind: DocKind, opts: &Options) -> LintReport 
     };
     let mut directives = String::new();
     let mut names: HashSet<String> = HashSet::new();
+    let lines = LineIndex::new(doc);
     let mut scope = Scope::default();
+    let mut scopes: Vec<Scope> = Vec::new();
     // The last expression of the previous chain: a display starting with `=` goes on.
     let mut last: Option<Expr> = None;
     let popts = ParseOptions {
@@ -248,14 +255,18 @@ pub fn lint(name: &str, doc: &str, kind: DocKind, opts: &Options) -> LintReport 
     for piece in pieces(doc, kind) {
         match piece {
             Piece::Heading => {
-                scope.close(name, doc, opts, &mut report.chains);
-                scope = Scope::under(&directives, &names);
+                scopes.push(std::mem::replace(
+                    &mut scope,
+                    Scope::under(&directives, &names),
+                ));
                 last = None;
             }
             // `<!-- rigor: ## Sliding -->`: a heading the notes do not show.
             Piece::Directive(text) if text.starts_with('#') => {
-                scope.close(name, doc, opts, &mut report.chains);
-                scope = Scope::under(&directives, &names);
+                scopes.push(std::mem::replace(
+                    &mut scope,
+                    Scope::under(&directives, &names),
+                ));
                 last = None;
             }
             Piece::Directive(text) => {
@@ -301,14 +312,21 @@ pub fn lint(name: &str, doc: &str, kind: DocKind, opts: &Options) -> LintReport 
             }
         }
     }
-    scope.close(name, doc, opts, &mut report.chains);
+    scopes.push(scope);
+    // Scopes share nothing: they are checked in parallel.
+    let checked = crate::files::parallel(&scopes, |s| {
+        let mut out = Vec::new();
+        s.close((name, &lines), opts, &mut out);
+        out
+    });
+    report.chains.extend(checked.into_iter().flatten());
     report.chains.sort_by_key(|c| c.span.start);
     report
 }
 
 /// A message about the derivation made from the document, with its `line N` (lines of
 /// that derivation) turned into the lines of the document they came from.
-fn document_lines(message: &str, deriv: &str, placed: &[Placed], doc: &str) -> String {
+fn document_lines(message: &str, deriv: &str, placed: &[Placed], doc: &LineIndex<'_>) -> String {
     let doc_line = |n: usize| -> Option<usize> {
         let line_start = deriv
             .split_inclusive('\n')
@@ -322,7 +340,7 @@ fn document_lines(message: &str, deriv: &str, placed: &[Placed], doc: &str) -> S
             .flatten()
             .find(|(at, _, _)| *at >= line_start && *at <= line_end)?
             .1;
-        Some(doc.get(..at)?.matches('\n').count() + 1)
+        Some(doc.line_col(at).0)
     };
     let mut out = String::new();
     let mut said: Vec<String> = Vec::new();

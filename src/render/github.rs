@@ -2,7 +2,7 @@
 //! diagnostic as an annotation on the pull request.
 
 use crate::check::report::FileReport;
-use crate::diag::{line_col, Diagnostic, Severity};
+use crate::diag::{Diagnostic, LineIndex, Severity};
 
 /// One workflow command per diagnostic, each on its own line:
 /// `::error file=PATH,line=L,col=C,endLine=L2,endColumn=C2,title=CODE::MESSAGE`
@@ -12,29 +12,30 @@ use crate::diag::{line_col, Diagnostic, Severity};
 /// message `%`, `\r`, `\n` become `%25`, `%0D`, `%0A`; in properties also `:` and `,`
 /// become `%3A` and `%2C`.
 pub fn report(r: &FileReport) -> String {
-    r.diagnostics.iter().map(|d| command(r, d)).collect()
+    let idx = LineIndex::new(&r.source);
+    r.diagnostics
+        .iter()
+        .map(|d| command_in(&r.path, &idx, d))
+        .collect()
 }
 
 /// One workflow command for a diagnostic of the file `path` with text `source`.
 pub fn command_for(path: &str, source: &str, d: &Diagnostic) -> String {
-    let r = FileReport {
-        path: path.to_string(),
-        source: source.to_string(),
-        ..FileReport::default()
-    };
-    command(&r, d)
+    command_in(path, &LineIndex::new(source), d)
 }
 
-fn command(r: &FileReport, d: &Diagnostic) -> String {
+/// One workflow command for a diagnostic of the file `path`, its text indexed (for many
+/// diagnostics of one file).
+pub fn command_in(path: &str, idx: &LineIndex<'_>, d: &Diagnostic) -> String {
     let kind = match d.severity {
         Severity::Error => "error",
         Severity::Warning => "warning",
         Severity::Note => "notice",
     };
-    let mut props = vec![format!("file={}", escape_property(&r.path))];
+    let mut props = vec![format!("file={}", escape_property(path))];
     if let Some((span, _)) = &d.primary {
-        let (line, col) = line_col(&r.source, span.start);
-        let (end_line, end_col) = line_col(&r.source, span.end.max(span.start));
+        let (line, col) = idx.line_col(span.start);
+        let (end_line, end_col) = idx.line_col(span.end.max(span.start));
         props.push(format!("line={line}"));
         props.push(format!("col={col}"));
         props.push(format!("endLine={end_line}"));

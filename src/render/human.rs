@@ -2,7 +2,6 @@
 //! `--verbose` one line per verified link, and the one-line summary.
 
 use crate::check::report::{FileReport, Status};
-use crate::diag::{line_col, render};
 
 /// The diagnostics of one file, rendered by [`crate::diag::render`] in their order,
 /// separated by blank lines. With `verbose`, each verified link also gets a line
@@ -11,6 +10,7 @@ use crate::diag::{line_col, render};
 /// are merged into the diagnostics by source position.
 pub fn report(r: &FileReport, verbose: bool) -> String {
     let mut verified: Vec<(usize, String)> = Vec::new();
+    let idx = crate::diag::LineIndex::new(&r.source);
     if verbose {
         for link in r.claims.iter().flat_map(|c| &c.links) {
             if let Status::Verified {
@@ -18,7 +18,7 @@ pub fn report(r: &FileReport, verbose: bool) -> String {
                 side_conditions,
             } = &link.status
             {
-                let (line, col) = line_col(&r.source, link.span.start);
+                let (line, col) = idx.line_col(link.span.start);
                 let mut s = format!("{}:{line}:{col}: verified ({how})", r.path);
                 if !side_conditions.is_empty() {
                     s.push_str(&format!(", assuming {}", side_conditions.join(", ")));
@@ -42,7 +42,7 @@ pub fn report(r: &FileReport, verbose: bool) -> String {
         if previous_was_diagnostic {
             out.push('\n');
         }
-        out.push_str(&render(d, &r.path, &r.source));
+        out.push_str(&crate::diag::render_in(d, &r.path, &idx));
         previous_was_diagnostic = true;
     }
     for (_, s) in pending {

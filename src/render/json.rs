@@ -2,7 +2,7 @@
 //! and every diagnostic, positions as 1-based lines and columns (in characters).
 
 use crate::check::report::{FileReport, Justification, LinkReport, Status};
-use crate::diag::{line_col, Diagnostic};
+use crate::diag::{Diagnostic, LineIndex};
 use crate::syntax::ast::Span;
 use serde_json::{json, Value};
 
@@ -25,15 +25,16 @@ use serde_json::{json, Value};
 /// right side", "a sign error?"); its `notes` hold both sides and the checked
 /// counterexample (`"counterexample: at …"`).
 pub fn report(r: &FileReport) -> Value {
+    let idx = LineIndex::new(&r.source);
     let claims: Vec<Value> = r
         .claims
         .iter()
         .map(|c| {
-            let links: Vec<Value> = c.links.iter().map(|l| link(r, l)).collect();
+            let links: Vec<Value> = c.links.iter().map(|l| link(&idx, l)).collect();
             json!({ "label": c.label, "line": c.line, "links": links })
         })
         .collect();
-    let diagnostics: Vec<Value> = r.diagnostics.iter().map(|d| diagnostic(r, d)).collect();
+    let diagnostics: Vec<Value> = r.diagnostics.iter().map(|d| diagnostic(&idx, d)).collect();
     json!({
         "path": r.path,
         "ok": r.ok(),
@@ -44,11 +45,11 @@ pub fn report(r: &FileReport) -> Value {
 }
 
 /// The four position fields of a span, merged into `obj`.
-fn position(r: &FileReport, span: Option<Span>, obj: &mut serde_json::Map<String, Value>) {
+fn position(idx: &LineIndex<'_>, span: Option<Span>, obj: &mut serde_json::Map<String, Value>) {
     let (a, b) = match span {
         Some(s) => {
-            let (l, c) = line_col(&r.source, s.start);
-            let (l2, c2) = line_col(&r.source, s.end.max(s.start));
+            let (l, c) = idx.line_col(s.start);
+            let (l2, c2) = idx.line_col(s.end.max(s.start));
             (Some((l, c)), Some((l2, c2)))
         }
         None => (None, None),
@@ -59,7 +60,7 @@ fn position(r: &FileReport, span: Option<Span>, obj: &mut serde_json::Map<String
     obj.insert("end_column".into(), json!(b.map(|p| p.1)));
 }
 
-fn link(r: &FileReport, l: &LinkReport) -> Value {
+fn link(idx: &LineIndex<'_>, l: &LinkReport) -> Value {
     let (status, how, side): (&str, Value, &[String]) = match &l.status {
         Status::Verified {
             how,
@@ -71,7 +72,7 @@ fn link(r: &FileReport, l: &LinkReport) -> Value {
         Status::NotChecked => ("not_checked", Value::Null, &[]),
     };
     let mut obj = serde_json::Map::new();
-    position(r, Some(l.span), &mut obj);
+    position(idx, Some(l.span), &mut obj);
     obj.insert("op".into(), json!(l.op.as_str()));
     obj.insert("lhs".into(), json!(l.lhs));
     obj.insert("rhs".into(), json!(l.rhs));
@@ -96,12 +97,12 @@ fn justification(how: &Justification) -> Value {
     }
 }
 
-fn diagnostic(r: &FileReport, d: &Diagnostic) -> Value {
+fn diagnostic(idx: &LineIndex<'_>, d: &Diagnostic) -> Value {
     let mut obj = serde_json::Map::new();
     obj.insert("severity".into(), json!(d.severity.as_str()));
     obj.insert("code".into(), json!(d.code));
     obj.insert("message".into(), json!(d.message));
-    position(r, d.primary.as_ref().map(|(s, _)| *s), &mut obj);
+    position(idx, d.primary.as_ref().map(|(s, _)| *s), &mut obj);
     obj.insert("label".into(), json!(d.primary.as_ref().map(|(_, l)| l)));
     obj.insert("notes".into(), json!(d.notes));
     Value::Object(obj)

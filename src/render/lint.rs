@@ -1,7 +1,7 @@
 //! `rigor lint` reports: one line per chain (`doc.md:12:5: verified`), the diagnostics of
 //! failed chains rustc-style, JSON and GitHub annotations, and the summary line.
 
-use crate::diag::line_col;
+use crate::diag::LineIndex;
 use crate::lint::{LintReport, Verdict};
 use serde_json::json;
 
@@ -16,8 +16,9 @@ fn word(v: &Verdict) -> &'static str {
 /// The human report: (standard output, standard error).
 pub fn human(r: &LintReport) -> (String, String) {
     let (mut out, mut err) = (String::new(), String::new());
+    let idx = LineIndex::new(&r.source);
     for c in &r.chains {
-        let (line, col) = line_col(&r.source, c.span.start);
+        let (line, col) = idx.line_col(c.span.start);
         let why = c.diagnostics.first().map_or(String::new(), |d| {
             let m = d.message.as_str();
             format!(": {}", m.strip_prefix("needs context: ").unwrap_or(m))
@@ -30,7 +31,7 @@ pub fn human(r: &LintReport) -> (String, String) {
             Verdict::Failed => {
                 out.push_str(&format!("{}:{line}:{col}: FAILED{why}\n", r.path));
                 for d in &c.diagnostics {
-                    err.push_str(&crate::diag::render(d, &r.path, &r.source));
+                    err.push_str(&crate::diag::render_in(d, &r.path, &idx));
                 }
             }
         }
@@ -52,16 +53,17 @@ pub fn summary(reports: &[LintReport]) -> String {
 
 /// One JSON object per document.
 pub fn json(r: &LintReport) -> String {
+    let idx = LineIndex::new(&r.source);
     let chains: Vec<serde_json::Value> = r
         .chains
         .iter()
         .map(|c| {
-            let (line, column) = line_col(&r.source, c.span.start);
+            let (line, column) = idx.line_col(c.span.start);
             let diags: Vec<serde_json::Value> = c
                 .diagnostics
                 .iter()
                 .map(|d| {
-                    let at = d.primary.as_ref().map(|(s, _)| line_col(&r.source, s.start));
+                    let at = d.primary.as_ref().map(|(s, _)| idx.line_col(s.start));
                     json!({"code": d.code, "message": d.message, "notes": d.notes,
                            "line": at.map(|a| a.0), "column": at.map(|a| a.1)})
                 })
@@ -85,6 +87,12 @@ pub fn github(r: &LintReport) -> String {
         .iter()
         .filter(|c| c.verdict == Verdict::Failed)
         .flat_map(|c| c.diagnostics.iter())
-        .map(|d| super::github::command_for(&r.path, &r.source, d))
-        .collect()
+        .fold(
+            (LineIndex::new(&r.source), String::new()),
+            |(idx, mut out), d| {
+                out.push_str(&super::github::command_in(&r.path, &idx, d));
+                (idx, out)
+            },
+        )
+        .1
 }

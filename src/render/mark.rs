@@ -179,6 +179,7 @@ pub fn feedback(r: &Row, reveal: Option<&str>) -> String {
         r.steps.0, r.steps.1
     ));
     if let Some(rep) = &r.report {
+        let idx = crate::diag::LineIndex::new(&rep.source);
         for c in &rep.claims {
             for l in &c.links {
                 let v = match l.status {
@@ -188,7 +189,7 @@ pub fn feedback(r: &Row, reveal: Option<&str>) -> String {
                     Status::Error => "not read",
                     Status::NotChecked => "not checked (it cites a step that does not follow)",
                 };
-                let line = crate::diag::line_col(&rep.source, l.span.start).0;
+                let line = idx.line_col(l.span.start).0;
                 out.push_str(&format!("- line {line}: {v}\n"));
             }
         }

@@ -171,10 +171,11 @@ pub(crate) fn build_with(report: &FileReport, detail: Detail) -> Solution {
             Inline::Code(report.path.clone()),
             Inline::Text(" could not be read, so no worked solution was produced.".into()),
         ])];
+        let idx = crate::diag::LineIndex::new(&report.source);
         let listing: Vec<String> = report
             .diagnostics
             .iter()
-            .map(|d| crate::diag::render(d, &report.path, &report.source))
+            .map(|d| crate::diag::render_in(d, &report.path, &idx))
             .collect();
         if !listing.is_empty() {
             blocks.push(Block::Listing(listing));

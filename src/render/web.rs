@@ -71,10 +71,11 @@ fn answer(request: &str, clock: Option<Clock>) -> Result<Value, String> {
 
 /// Everything the page shows of one checked file.
 pub fn page(report: &FileReport) -> Value {
+    let idx = crate::diag::LineIndex::new(&report.source);
     let rendered: Vec<String> = report
         .diagnostics
         .iter()
-        .map(|d| crate::diag::render(d, &report.path, &report.source))
+        .map(|d| crate::diag::render_in(d, &report.path, &idx))
         .collect();
     let solution = build(report);
     json!({
