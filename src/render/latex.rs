@@ -257,7 +257,8 @@ fn problem_latex(p: &Problem, out: &mut String) {
         text(&p.message)
     ));
     for n in &p.notes {
-        out.push_str(&format!("\\hspace*{{1em}}{}\\par\n", text(n)));
+        let note = inlines(&super::solution::note_inlines(n));
+        out.push_str(&format!("\\hspace*{{1em}}{note}\\par\n"));
     }
 }
 

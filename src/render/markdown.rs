@@ -291,7 +291,7 @@ fn problem_markdown(p: &Problem, out: &mut String) {
     }
     out.push_str(&format!(": {}\n", markdown_message(&p.message)));
     for n in &p.notes {
-        let note = block_safe(markdown_message(n));
+        let note = block_safe(inlines(&super::solution::note_inlines(n)));
         out.push_str(&format!(">\n> {note}\n"));
     }
 }

@@ -157,6 +157,54 @@ pub(crate) fn rich(t: &str) -> Vec<Inline> {
 }
 
 /// The worked solution of a report, as written.
+/// A note of a failure, typeset where it states expressions (the notes print normal
+/// forms in rigor's own syntax): `left side:  g m/2`, `after using the facts, left −
+/// right = …`, and the values of a counterexample. Anything that does not read stays
+/// words.
+pub(crate) fn note_inlines(note: &str) -> Vec<Inline> {
+    let read = |t: &str| {
+        crate::syntax::parse_expr(t.trim(), &crate::syntax::ParseOptions::default())
+            .ok()
+            .map(|e| super::expr::expr_latex(&e))
+    };
+    const LEADS: [&str; 4] = [
+        "left side:",
+        "right side:",
+        "after using the facts, left − right =",
+        "after eliminating what the facts give, left − right =",
+    ];
+    if let Some(lead) = LEADS.iter().find(|l| note.starts_with(**l)) {
+        if let Some(m) = read(&note[lead.len()..]) {
+            // Set as a display would set it, so fractions keep their size.
+            return vec![
+                Inline::Text(format!("{lead} ")),
+                Inline::Math(format!("\\displaystyle {m}")),
+            ];
+        }
+    }
+    if let Some(rest) = note.strip_prefix("counterexample: at ") {
+        let (values, tail) = rest.split_once(" the ").unwrap_or((rest, ""));
+        let typeset: Option<Vec<String>> = values
+            .split(", ")
+            .map(|v| {
+                let (name, value) = v.split_once(" = ")?;
+                Some(format!("{} = {}", read(name)?, read(value)?))
+            })
+            .collect();
+        if let Some(t) = typeset {
+            let mut out = vec![
+                Inline::Text("counterexample: at ".into()),
+                Inline::Math(t.join(",\\ ")),
+            ];
+            if !tail.is_empty() {
+                out.push(Inline::Text(format!(" the {tail}")));
+            }
+            return out;
+        }
+    }
+    vec![Inline::Text(note.to_string())]
+}
+
 pub(crate) fn build(report: &FileReport) -> Solution {
     build_with(report, Detail::Written)
 }

@@ -865,3 +865,28 @@ fn math_in_titles_and_headings_is_typeset() {
         "{md}"
     );
 }
+
+#[test]
+fn failure_notes_typeset_their_expressions_and_keep_words_as_words() {
+    use super::solution::{note_inlines, Inline};
+    let left = note_inlines("left side:  L^2 m/12");
+    assert_eq!(
+        left,
+        vec![
+            Inline::Text("left side: ".into()),
+            Inline::Math("\\displaystyle \\frac{L^{2}\\,m}{12}".into())
+        ]
+    );
+    let cx = note_inlines("counterexample: at L = 2, m = 11/4 the left side is 11/12");
+    assert!(
+        matches!(&cx[1], Inline::Math(m) if m == "L = 2,\\ m = \\frac{11}{4}"),
+        "{cx:?}"
+    );
+    // What does not read as an expression stays text (escaped where it is written).
+    for words in [
+        "left side: \\input{/etc/passwd}",
+        "the two sides have opposite signs (a sign error?)",
+    ] {
+        assert_eq!(note_inlines(words), vec![Inline::Text(words.into())]);
+    }
+}
