@@ -368,6 +368,14 @@ pub fn exp(u: &Rat) -> Result<Rat, NormError> {
                     let k = q.to_integer().to_i64().ok_or(Limit::Exponent)?;
                     out = out.mul(&v.powi(k)?)?;
                 }
+                // exp((p/n) ln v) = (v^(1/n))^p: v > 0 wherever ln v is defined, so the
+                // principal root is the value.
+                (Some(v), false) if q.denom().to_u32().is_some_and(|n| n <= 64) => {
+                    let n = q.denom().to_u32().unwrap_or(2);
+                    let k = q.numer().to_i64().ok_or(Limit::Exponent)?;
+                    let r = root(&v, n, &Assumptions::default())?;
+                    out = out.mul(&int_pow(&r, k)?)?;
+                }
                 _ => rest.push((m.clone(), q.clone())),
             }
         }
@@ -453,8 +461,20 @@ pub fn ln(u: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
 /// signs show `v > 0`, `ln(-v)` where `v < 0`, otherwise `ln(abs(v))`; `ln(exp(w)) = w`.
 fn ln_abs(v: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
     if let Some(a) = v.as_atom() {
-        if let Atom::Exp(w) = &*atom::get(a) {
-            return Ok(w.clone());
+        match &*atom::get(a) {
+            Atom::Exp(w) => return Ok(w.clone()),
+            // |p^(1/n)| = |p|^(1/n) for the principal root (real: p ≥ 0 for even n), so
+            // ln|p^(1/n)| = ln|p|/n wherever the root is not zero.
+            Atom::Sqrt(p) | Atom::Root(p, _) => {
+                let n = match &*atom::get(a) {
+                    Atom::Root(_, n) => i64::from(*n),
+                    _ => 2,
+                };
+                let p = Rat::poly(p.clone())?;
+                let l = ln(&abs(&p, s)?, s)?;
+                return Ok(l.scale(&Q::new(BigInt::one(), BigInt::from(n))));
+            }
+            _ => {}
         }
     }
     let arg = abs(v, s)?;

@@ -417,11 +417,11 @@ fn random_pairs_agree_with_the_independent_evaluation() {
     );
     assert!(t.total >= 2_000 || n < 2_500, "only {} pairs", t.total);
     // The target of issue #14 is fewer than 1 in 50 true pairs undecided. Measured at
-    // this seed: 5.8% (1 in 17). The kinds that stay undecided, each with a minimal
-    // example, are the `undecided_*` tests below; this bound only keeps it from
-    // getting worse. Tighten it as they are fixed.
+    // this seed: 5.0% (1 in 20; 5.8% before logarithms of roots were split). The kinds
+    // that stay undecided, each with a minimal example, are the `undecided_*` tests
+    // below; this bound only keeps it from getting worse. Tighten it as they are fixed.
     assert!(
-        t.undecided_true * 14 < t.true_pairs,
+        t.undecided_true * 18 < t.true_pairs,
         "undecided on {} of {} true pairs",
         t.undecided_true,
         t.true_pairs
@@ -450,7 +450,6 @@ fn the_printer_and_the_evaluators_agree_on_precedence() {
 const UNDECIDED: &[(&str, &str)] = &[
     // ln of a power or a root of a positive sum (a product of positive symbols works).
     ("symbols a > 0", "ln((a + 1)^2) = 2 ln(a + 1)"),
-    ("symbols a > 0", "ln(sqrt(a)) = ln(a)/2"),
     ("symbols x", "ln((x + 1)^2) = 2 ln(abs(x + 1))"),
     // Odd roots of odd powers of sums (of a symbol: verified).
     ("symbols y", "((y - 1)^3)^(1/3) = y - 1"),
@@ -504,5 +503,23 @@ fn refutations_with_tiny_values_stand() {
     let text = "symbols y > 0\nclaim exp(-30 y) = 2 exp(-30 y)\n";
     assert_eq!(verdict(text), Verdict::Refuted, "{text}");
     let text = "symbols y > 0\nclaim 1/(y^8) = 1/(y^8 + 1)\n";
+    assert_eq!(verdict(text), Verdict::Refuted, "{text}");
+}
+
+#[test]
+fn logarithms_of_roots_and_exponentials_of_fractional_logarithms_are_decided() {
+    for (decls, claim) in [
+        ("symbols a > 0", "ln(sqrt(a)) = ln(a)/2"),
+        ("symbols a > 0", "ln(a^(1/3)) = ln(a)/3"),
+        ("symbols a b > 0", "ln(sqrt(a b)) = ln(a)/2 + ln(b)/2"),
+        ("symbols a > 0", "exp(ln(sqrt(a))) = sqrt(a)"),
+        ("symbols x", "exp(ln(x)/2) = sqrt(x)"),
+        ("symbols x", "exp(3 ln(x)/2) = x sqrt(x)"),
+    ] {
+        let text = format!("{decls}\nclaim {claim}\n");
+        assert_eq!(verdict(&text), Verdict::Verified, "{text}");
+    }
+    // And a false neighbour is still refuted.
+    let text = "symbols a > 0\nclaim ln(sqrt(a)) = ln(a)/3\n";
     assert_eq!(verdict(text), Verdict::Refuted, "{text}");
 }
