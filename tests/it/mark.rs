@@ -182,3 +182,37 @@ fn the_file_budget_stops_the_remaining_claims_once_and_says_so() {
         .collect();
     assert_eq!(budget.len(), 1, "said once: {:?}", spent.diagnostics);
 }
+
+/// The second problem: the handout's trapdoor, marked against `derivations/trapdoor.deriv`.
+const TRAPDOOR: &str = "derivations/trapdoor.deriv";
+const TRAPDOOR_CLASS: &str = "tests/mark/trapdoor";
+
+#[test]
+fn a_second_problem_is_marked_in_every_format() {
+    let (out, err, code) = mark(&["--reference", TRAPDOOR, TRAPDOOR_CLASS, "--format", "csv"]);
+    assert_eq!(code, 0, "{err}");
+    let rows: Vec<&str> = out.lines().skip(1).collect();
+    assert_eq!(rows.len(), 5, "{out}");
+    // Two correct submissions, in other orders and labels.
+    assert!(
+        rows[0].ends_with("01_correct.deriv,4,4,,,2,2"),
+        "{}",
+        rows[0]
+    );
+    assert!(rows[1].ends_with(",3,3,,,2,2"), "{}", rows[1]);
+    // A sign slip in a step (the results as written are right: still counted right).
+    assert!(rows[2].contains(",6,sign,2,2"), "{}", rows[2]);
+    // Every step follows from a wrong moment of inertia: only the results are wrong.
+    assert!(rows[3].ends_with(",4,4,,,0,2"), "{}", rows[3]);
+    // The centre's acceleration never related to theta'': a missing fact.
+    assert!(rows[4].contains(",8,missing_fact,2,2"), "{}", rows[4]);
+    insta::assert_snapshot!("trapdoor_csv", out);
+    for format in ["human", "json"] {
+        let (out, _, code) = mark(&["--reference", TRAPDOOR, TRAPDOOR_CLASS, "--format", format]);
+        assert_eq!(code, 0);
+        insta::assert_snapshot!(format!("trapdoor_{format}"), out);
+    }
+    let (out, _, code) = mark(&["--reference", TRAPDOOR, TRAPDOOR_CLASS, "--summary"]);
+    assert_eq!(code, 0);
+    insta::assert_snapshot!("trapdoor_summary", out);
+}
