@@ -459,18 +459,31 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
             (None, true)
         }
         None => {
-            // Checked as a claim; then, holding or not, taken as what the notes state.
+            // Checked as a claim; then, holding or not, taken as what the notes state —
+            // unless every symbol is one the document declared: then it is a step, a
+            // fact once verified, and a mistake (never a fact) if not.
             let claim = write("claim", &first_link, deriv);
             let kw = if constraint { "constraint" } else { "given" };
-            stated = write(kw, &first_link, deriv);
+            stated = if firm && !constraint {
+                None
+            } else {
+                write(kw, &first_link, deriv)
+            };
             (claim, matches!(chain.first.kind, ExprKind::Sym(_)))
         }
     };
     let rest = rest_span.and_then(|r| write("claim", &[link0.rhs.span, r], deriv));
     // Then each later link is taken as stated too, as the first is: one that does not
     // follow states something new (`m y'' = 0`), which later chains may use.
-    for (prev, l) in chain.links.iter().zip(chain.links.iter().skip(1)) {
-        let _ = write("given", &[prev.rhs.span, l.span], deriv);
+    for ((prev, l), later) in chain
+        .links
+        .iter()
+        .zip(chain.links.iter().skip(1))
+        .zip(&later)
+    {
+        if !later.firm {
+            let _ = write("given", &[prev.rhs.span, l.span], deriv);
+        }
     }
     placed.push(Placed {
         first,

@@ -184,3 +184,13 @@ fn integrals_over_a_prose_mass_element_are_checked_for_linearity_only() {
     assert!(out.contains("mass_notes.md:5:3: needs context"), "{out}");
     assert!(out.contains("mass_notes.md:7:3: needs context"), "{out}");
 }
+
+#[test]
+fn a_slip_in_declared_symbols_is_not_taken_as_a_fact_for_what_follows() {
+    // `(a + b)^2 = a^2 + b^2` fails; taken as stated it would give `ab = 0`, a false
+    // line, as verified. A slip is a mistake, never a fact: `ab = 0` fails too.
+    let (out, err, code) = lint(&["tests/lint/slip_then_more.md"]);
+    assert_eq!(code, 1, "{out}{err}");
+    assert!(out.contains("slip_then_more.md:5:3: FAILED"), "{out}");
+    assert!(out.contains("slip_then_more.md:9:3: FAILED"), "{out}");
+}
