@@ -17,6 +17,10 @@ use num_traits::{One, Signed, ToPrimitive, Zero};
 /// Multiples larger than this stay unexpanded atoms (`sin(1000 x)`).
 const MAX_MULTIPLE: i64 = 32;
 
+/// The largest multiple `rebase` writes out when it compares sines and cosines of one
+/// angle (only to decide whether a difference is zero, never in a normal form).
+const MAX_REBASE: i64 = 128;
+
 /// An argument whose expansion could have more terms than this (the product of
 /// `|k| + 1` over its terms `k·θ`) stays one atom (`cos(a + b + … + z)`).
 const MAX_EXPANSION: u64 = 1 << 16;
@@ -185,7 +189,7 @@ pub fn tan(u: &Rat) -> Result<Rat, NormError> {
 /// Rewrites sines and cosines of different multiples of the same angle in terms of
 /// their common base angle (`sin(θ)` and `sin(θ/2)` both in terms of `θ/2`), so that
 /// identities such as `sin θ = 2 sin(θ/2) cos(θ/2)` normalise to zero. Multiples above
-/// the expansion limit are left alone.
+/// `MAX_REBASE` are left alone.
 pub fn rebase(r: &Rat, s: &super::sign::Assumptions) -> Result<Rat, NormError> {
     use std::collections::HashMap;
     let mut groups: HashMap<Mono, Vec<(super::atom::AtomId, bool, Q)>> = HashMap::new();
@@ -226,7 +230,7 @@ pub fn rebase(r: &Rat, s: &super::sign::Assumptions) -> Result<Rat, NormError> {
                 (&i.2 / &g)
                     .to_integer()
                     .to_i64()
-                    .filter(|k| k.abs() <= MAX_MULTIPLE)
+                    .filter(|k| k.abs() <= MAX_REBASE)
             })
             .collect();
         let Some(ks) = ks else { continue };
