@@ -234,16 +234,25 @@ pub fn check_source(
         cache: HashMap::new(),
         opts: options,
     };
+    let budget = options
+        .file_budget
+        .and_then(|b| crate::clock::Deadline::after(b, options.clock));
     let mut report = check_in(name, text, &mut loader).0;
     // Several failed steps: the first may explain the rest (one mistake, one error).
-    if report.failed() >= 2 {
+    // Checking again spends what is left of the file's budget, if it has one.
+    let left = budget.map(|d| d.remaining());
+    if report.failed() >= 2 && left.is_none_or(|l| !l.is_zero()) {
         if let Ok(ast) = parse_file(&report.source, &options.parse) {
             let recheck = |changed: &str| {
+                let again = Options {
+                    file_budget: budget.map(|d| d.remaining()),
+                    ..options.clone()
+                };
                 let mut loader = Loader {
                     resolver,
                     stack: loader.stack[..1].to_vec(),
                     cache: HashMap::new(),
-                    opts: options,
+                    opts: &again,
                 };
                 check_in(name, changed, &mut loader).0
             };
