@@ -20,17 +20,10 @@ use crate::syntax::print::source;
 
 /// Whether a tree integrates over `dm` with no body declared (`\int r^2\,dm`).
 pub(super) fn prose_mass(e: &Expr) -> bool {
-    match &e.kind {
-        ExprKind::Call(Func::Int, args)
-            if args.len() == 2 && matches!(&args[1].kind, ExprKind::Sym(v) if v == "dm") =>
-        {
-            true
-        }
-        ExprKind::Call(_, args) => args.iter().any(prose_mass),
-        ExprKind::Neg(a) => prose_mass(a),
-        ExprKind::Bin(_, a, b) => prose_mass(a) || prose_mass(b),
-        ExprKind::Sym(_) | ExprKind::Num(_) | ExprKind::Pi => false,
-    }
+    e.any(&|n| {
+        matches!(&n.kind, ExprKind::Call(Func::Int, args)
+            if args.len() == 2 && matches!(&args[1].kind, ExprKind::Sym(v) if v == "dm"))
+    })
 }
 
 /// A side read as Σ cᵢ ∫ fᵢ dm + r (as source text).

@@ -200,24 +200,7 @@ fn working_latex(work: &[Work], out: &mut String) {
             continue;
         }
         out.push_str("\\begin{align*}\n");
-        for (i, l) in w.lines.iter().enumerate() {
-            out.push_str(&format!("{} &{} {}", l.lhs, l.rel, l.rhs));
-            if !l.note.is_empty() {
-                out.push_str(" \\quad");
-                for part in &l.note {
-                    match part {
-                        Inline::Math(m) => out.push_str(&format!(" {m}")),
-                        Inline::Text(t) | Inline::Strong(t) | Inline::Code(t) => {
-                            out.push_str(&format!("\\text{{{}}}", text(t)))
-                        }
-                    }
-                }
-            }
-            if i + 1 < w.lines.len() {
-                out.push_str(" \\\\");
-            }
-            out.push('\n');
-        }
+        out.push_str(&w.rows(text));
         out.push_str("\\end{align*}\n");
     }
     out.push_str("\\end{quote}\n");

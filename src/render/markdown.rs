@@ -173,24 +173,7 @@ pub(crate) fn work_latex(w: &Work) -> Option<String> {
         return None;
     }
     let mut out = String::from("\\begin{aligned}\n");
-    for (i, l) in w.lines.iter().enumerate() {
-        out.push_str(&format!("{} &{} {}", l.lhs, l.rel, l.rhs));
-        if !l.note.is_empty() {
-            out.push_str(" \\quad");
-            for part in &l.note {
-                match part {
-                    Inline::Math(m) => out.push_str(&format!(" {m}")),
-                    Inline::Text(t) | Inline::Strong(t) | Inline::Code(t) => {
-                        out.push_str(&format!("\\text{{{}}}", mathjax_text(t)))
-                    }
-                }
-            }
-        }
-        if i + 1 < w.lines.len() {
-            out.push_str(" \\\\");
-        }
-        out.push('\n');
-    }
+    out.push_str(&w.rows(mathjax_text));
     out.push_str("\\end{aligned}");
     Some(out)
 }

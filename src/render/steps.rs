@@ -33,6 +33,33 @@ pub(crate) struct Work {
     pub lines: Vec<Line>,
 }
 
+impl Work {
+    /// The lines as the rows of an aligned environment (each ending in a newline, `\\`
+    /// between rows), the text of notes escaped by `text` for where it is set.
+    pub(crate) fn rows(&self, text: impl Fn(&str) -> String) -> String {
+        let mut out = String::new();
+        for (i, l) in self.lines.iter().enumerate() {
+            out.push_str(&format!("{} &{} {}", l.lhs, l.rel, l.rhs));
+            if !l.note.is_empty() {
+                out.push_str(" \\quad");
+                for part in &l.note {
+                    match part {
+                        Inline::Math(m) => out.push_str(&format!(" {m}")),
+                        Inline::Text(t) | Inline::Strong(t) | Inline::Code(t) => {
+                            out.push_str(&format!("\\text{{{}}}", text(t)))
+                        }
+                    }
+                }
+            }
+            if i + 1 < self.lines.len() {
+                out.push_str(" \\\\");
+            }
+            out.push('\n');
+        }
+        out
+    }
+}
+
 /// One aligned line of filled-in work: `lhs rel rhs` (LaTeX), then a note.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Line {

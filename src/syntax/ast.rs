@@ -136,6 +136,17 @@ impl Expr {
     pub fn new(kind: ExprKind, span: Span) -> Expr {
         Expr { kind, span }
     }
+
+    /// Whether this node or any node below it satisfies `f`.
+    pub fn any(&self, f: &dyn Fn(&Expr) -> bool) -> bool {
+        f(self)
+            || match &self.kind {
+                ExprKind::Num(_) | ExprKind::Sym(_) | ExprKind::Pi => false,
+                ExprKind::Neg(a) => a.any(f),
+                ExprKind::Bin(_, a, b) => a.any(f) || b.any(f),
+                ExprKind::Call(_, args) => args.iter().any(|a| a.any(f)),
+            }
+    }
 }
 
 /// A relation operator.
