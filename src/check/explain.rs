@@ -114,7 +114,12 @@ impl Checker<'_, '_> {
         // Quantities declared without a sign (forces, reactions) before those with one
         // (masses, lengths), which the facts determine only in a formal sense.
         let mut order: Vec<AtomId> = tied.to_vec();
-        order.sort_by_key(|&a| signs.declared(a) != crate::normal::Sign::Unknown);
+        order.sort_by_key(|&a| {
+            (
+                signs.declared(a) != crate::normal::Sign::Unknown,
+                atom::sym_name(a).unwrap_or_default(),
+            )
+        });
         for x in order {
             let Some(name) = atom::sym_name(x) else {
                 continue;
@@ -447,11 +452,19 @@ fn tied_headline(tied: &[AtomId], left: &[Fact]) -> String {
 }
 
 fn atom_names(atoms: &[AtomId]) -> String {
-    atoms
-        .iter()
-        .map(|a| crate::normal::print::atom_plain(&atom::get(*a)))
-        .collect::<Vec<_>>()
-        .join(", ")
+    listed(
+        atoms
+            .iter()
+            .map(|a| crate::normal::print::atom_plain(&atom::get(*a)))
+            .collect(),
+    )
+}
+
+/// Names in one order whatever the order atoms were made in (checks run in parallel
+/// make them in any order): alphabetical, ignoring case first.
+fn listed(mut names: Vec<String>) -> String {
+    names.sort_by(|a, b| a.to_lowercase().cmp(&b.to_lowercase()).then(a.cmp(b)));
+    names.join(", ")
 }
 
 fn them(atoms: &[AtomId]) -> &'static str {
@@ -498,8 +511,5 @@ pub(super) fn short(s: &str) -> String {
 
 /// Unknowns by name, comma-separated.
 pub(super) fn names(ids: &[AtomId]) -> String {
-    ids.iter()
-        .map(|a| unknown_name(*a))
-        .collect::<Vec<_>>()
-        .join(", ")
+    listed(ids.iter().map(|a| unknown_name(*a)).collect())
 }
