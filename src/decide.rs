@@ -104,6 +104,11 @@ fn decide_with(
     if crate::normal::trig::rebase(&d, s).is_ok_and(|r| r.is_zero()) {
         return Verdict::Equal;
     }
+    // Large powers of sums kept factored: zero, or written out where affordable.
+    let d = crate::normal::power::settle(&d, s);
+    if d.is_zero() {
+        return Verdict::Equal;
+    }
     // Square roots of integers that share a factor (sqrt(p) sqrt(q) against sqrt(p q),
     // p and q primes too large to find by trial division): over a coprime basis.
     let d = match coprime_radicals(&d) {
@@ -214,7 +219,9 @@ fn coprime_radicals(d: &Rat) -> Option<Rat> {
 /// Atoms that satisfy no algebraic relation rigor does not already apply.
 fn independent_atom(a: AtomId) -> bool {
     match &*atom::get(a) {
-        Atom::Sym(_) | Atom::Pi | Atom::Moment(..) | Atom::At(..) => true,
+        Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => true,
+        // An instant holding a kept factor is not in canonical form.
+        Atom::At(_, u) => !crate::normal::power::has_kept(u),
         // Square roots of distinct primes (rigor splits numeric radicands into primes
         // by trial division up to 10⁴, so a radicand below 10⁸ is a prime).
         // A negative radicand (`sqrt(-1)`) is not a real quantity and is never independent.
@@ -391,7 +398,9 @@ fn symbols_in_atom(a: AtomId, out: &mut Vec<AtomId>) {
                 out.push(a)
             }
         }
-        Atom::Sqrt(p) | Atom::Root(p, _) | Atom::Abs(p) => symbols_in_poly(p, out),
+        Atom::Sqrt(p) | Atom::Root(p, _) | Atom::Abs(p) | Atom::Factor(p) => {
+            symbols_in_poly(p, out)
+        }
         Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) => symbols_in(u, out),
         Atom::Pow(b, e) => {
             symbols_in(b, out);
@@ -649,6 +658,7 @@ impl<'a> Evaluator<'a> {
                 }
             }
             Atom::Abs(x) => self.poly(x)?.abs(),
+            Atom::Factor(x) => self.poly(x),
             Atom::Sin(u) => self.rat(u)?.sin(p),
             Atom::Cos(u) => self.rat(u)?.cos(p),
             Atom::Exp(u) => self.rat(u)?.exp(p),

@@ -116,6 +116,8 @@ fn diff_atom_uncached(
             let n = i64::from(*n);
             dp.div(&Rat::atom(a).powi(n - 1)?.scale(&Q::from_integer(n.into())))?
         }
+        // A kept factor is its sum.
+        Atom::Factor(p) => diff_poly(p, w, s, memo)?,
         Atom::Abs(p) => {
             let dp = diff_poly(p, w, s, memo)?;
             if dp.is_zero() {

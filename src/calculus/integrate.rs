@@ -59,6 +59,8 @@ enum Kind {
 /// `∫ f dx` with constant of integration 0.
 pub fn antiderivative(f: &Rat, x: AtomId, s: &Assumptions) -> Result<Rat, IntError> {
     let name = atom::sym_name(x).unwrap_or_default();
+    // Large powers of sums kept factored are integrated written out.
+    let f = &crate::normal::power::expand(f, s)?;
     if depends_on(&Rat::poly(f.den().clone())?, x) {
         return Err(IntError::Unsupported(format!(
             "the integrand is not a polynomial in {name} (its denominator depends on {name})"

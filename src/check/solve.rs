@@ -207,6 +207,8 @@ fn eliminate_with(
             divisor: sol.divisor,
         });
     }
+    // Large powers of sums kept factored: zero, or written out where affordable.
+    let target = crate::normal::power::settle(&target, signs);
     let mut stuck = Vec::new();
     unknowns_within(&target, is_unknown, &mut stuck);
     stuck.sort_by(|a, b| atom::cmp_atoms(*a, *b));
@@ -328,7 +330,7 @@ fn unknowns_within(r: &Rat, is_unknown: &dyn Fn(AtomId) -> bool, out: &mut Vec<A
         }
         match &*atom::get(a) {
             Atom::Sym(_) | Atom::Pi | Atom::Moment(..) | Atom::At(..) => {}
-            Atom::Sqrt(p) | Atom::Root(p, _) | Atom::Abs(p) => poly(p, out),
+            Atom::Sqrt(p) | Atom::Root(p, _) | Atom::Abs(p) | Atom::Factor(p) => poly(p, out),
             Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) => {
                 unknowns_within(u, is_unknown, out)
             }

@@ -140,6 +140,8 @@ impl Checker<'_, '_> {
         {
             diff = Rat::zero();
         }
+        // Large powers of sums kept factored: zero, or written out where affordable.
+        let diff = crate::normal::power::settle(&diff, &self.env.signs);
         // `by [..]` must name facts before this line, even where none is needed.
         if input.restricted() {
             match self.facts_for(input.by(), span) {

@@ -219,9 +219,10 @@ impl<'l, 'o> Checker<'l, 'o> {
         if e.timeout {
             // Undecided, not bad input: the claim fails, the file is not malformed.
             self.timed_out = true;
+            // Said as what it is (undecided), like the summary and the exit status.
             self.report.diagnostics.push(Diagnostic::error(
                 "E0902",
-                format!("not verified: {}", e.message),
+                "not verified: the claim ran out of its time budget (see --timeout)",
                 e.span,
                 "undecided",
             ));

@@ -37,6 +37,10 @@ pub enum Atom {
     Ln(Rat),
     /// `b^e` with a symbolic exponent and a base of unknown sign.
     Pow(Rat, Rat),
+    /// A sum kept as one factor so that its large powers are not expanded
+    /// ([`power::keep`](super::power::keep)): its value is `p`, a primitive polynomial of
+    /// two or more terms with a positive leading coefficient and no monomial factor.
+    Factor(Poly),
     /// `∫ x₁^e₁ ⋯ xₙ^eₙ dm` over the abstract body named: every coordinate with its exponent.
     Moment(String, Vec<(String, u32)>),
     /// A `time` symbol or one of its derivatives (`x'`) at an instant: `subs(x', t, T)`,
@@ -89,7 +93,7 @@ fn depth_of(t: &Table, a: &Atom) -> u32 {
     let of_rat = |r: &Rat| of_poly(r.num()).max(of_poly(r.den()));
     1 + match a {
         Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => 0,
-        Atom::Sqrt(p) | Atom::Root(p, _) | Atom::Abs(p) => of_poly(p),
+        Atom::Sqrt(p) | Atom::Root(p, _) | Atom::Abs(p) | Atom::Factor(p) => of_poly(p),
         Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) => of_rat(u),
         Atom::Pow(b, e) => of_rat(b).max(of_rat(e)),
         Atom::At(_, u) => of_rat(u),
@@ -185,6 +189,7 @@ fn kind_rank(a: &Atom) -> u8 {
         Atom::Exp(_) => 9,
         Atom::Ln(_) => 10,
         Atom::At(..) => 11,
+        Atom::Factor(_) => 12,
     }
 }
 

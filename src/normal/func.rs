@@ -549,8 +549,12 @@ pub fn pow(base: &Rat, exponent: &Rat, s: &Assumptions) -> Result<Rat, NormError
     ))))
 }
 
-/// An integer power; a sum too large to expand becomes an opaque power atom.
+/// An integer power; a large power of a sum is kept factored ([`super::power`]), and a
+/// sum too large to expand becomes an opaque power atom.
 pub fn int_pow(base: &Rat, k: i64) -> Result<Rat, NormError> {
+    if let Some(kept) = super::power::keep(base, k) {
+        return kept;
+    }
     match base.powi(k) {
         Err(NormError::Limit(Limit::Terms)) if k > 0 => Ok(Rat::atom(atom::intern(Atom::Pow(
             base.clone(),

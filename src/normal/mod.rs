@@ -9,6 +9,7 @@ pub mod gcd;
 pub mod mono;
 pub mod pack;
 pub mod poly;
+pub mod power;
 pub mod print;
 pub mod qops;
 pub mod ranges;
@@ -90,6 +91,8 @@ impl fmt::Display for NormError {
             }
             NormError::ZeroToZero => f.write_str("0^0 is undefined"),
             NormError::Domain(s) => f.write_str(s),
+            // Running out of time is not a refusal: the step is undecided.
+            NormError::Limit(Limit::Time) => write!(f, "{}", Limit::Time),
             NormError::Limit(l) => write!(f, "refused: {l}"),
         }
     }

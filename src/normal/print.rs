@@ -63,9 +63,10 @@ pub fn render(r: &Rat, style: Style) -> String {
     if r.den().is_one() {
         return poly(r.num(), style);
     }
+    let (num, den) = (oriented_factors(r.num()), oriented_factors(r.den()));
     // value = (a/b) · num' / den' with num', den' primitive and their first printed term positive.
-    let (cn, num) = primitive_for_print(r.num());
-    let (cd, den) = primitive_for_print(r.den());
+    let (cn, num) = primitive_for_print(&num);
+    let (cd, den) = primitive_for_print(&den);
     let k = cn / cd;
     let (a, b) = (k.numer().clone(), k.denom().clone());
     let neg = a.is_negative();
@@ -75,15 +76,15 @@ pub fn render(r: &Rat, style: Style) -> String {
         let (m, _) = &num.terms()[0];
         term(m, &Q::from_integer(a.clone()), style, true)
     } else if a.is_one() {
-        poly(&num, style)
+        poly_as_is(&num, style)
     } else {
         match style {
-            Style::Plain => format!("{} ({})", a, poly(&num, style)),
-            Style::Latex => format!("{} \\left({}\\right)", a, poly(&num, style)),
+            Style::Plain => format!("{} ({})", a, poly_as_is(&num, style)),
+            Style::Latex => format!("{} \\left({}\\right)", a, poly_as_is(&num, style)),
         }
     };
     let den_poly = den.scale(&Q::from_integer(b.clone()));
-    let den_text = poly(&den_poly, style);
+    let den_text = poly_as_is(&den_poly, style);
     let sign = if neg { "-" } else { "" };
     match style {
         Style::Latex => format!("{sign}\\frac{{{num_text}}}{{{den_text}}}"),
@@ -119,8 +120,44 @@ fn primitive_for_print(p: &Poly) -> (Q, Poly) {
     (c.clone(), p.scale(&c.recip()))
 }
 
+/// Whether a kept factor's sum prints with a negative first term, so that it is printed
+/// negated: `(x - a)` rather than the `(a - x)` the normal form may hold.
+fn reads_negated(p: &Poly) -> bool {
+    print_terms(&oriented_factors(p))
+        .first()
+        .is_some_and(|t| t.1.is_negative())
+}
+
+/// `p` with the sign of each term adjusted for the kept factors printed negated (an odd
+/// power of a negated factor changes the term's sign). Printing only: the atoms
+/// themselves are not changed, so the result is not `p`'s value.
+fn oriented_factors(p: &Poly) -> Poly {
+    let flips: Vec<AtomId> = p
+        .atoms()
+        .into_iter()
+        .filter(|a| matches!(&*get(*a), Atom::Factor(s) if reads_negated(s)))
+        .collect();
+    if flips.is_empty() {
+        return p.clone();
+    }
+    Poly::from_terms(
+        p.terms()
+            .iter()
+            .map(|(m, q)| {
+                let odd = flips.iter().filter(|a| m.exp(**a) % 2 == 1).count() % 2 == 1;
+                (m.clone(), if odd { -q } else { q.clone() })
+            })
+            .collect(),
+    )
+}
+
 /// A polynomial as a sum of terms.
 pub fn poly(p: &Poly, style: Style) -> String {
+    poly_as_is(&oriented_factors(p), style)
+}
+
+/// A polynomial as a sum of terms, its kept factors' signs already oriented.
+fn poly_as_is(p: &Poly, style: Style) -> String {
     let terms = print_terms(p);
     if terms.is_empty() {
         return "0".into();
@@ -302,6 +339,11 @@ fn atom_text(a: &Atom, style: Style) -> String {
             } else {
                 format!("\\sqrt[{n}]{{{}}}", poly(p, style))
             }
+        }
+        // A kept factor prints as its sum in parentheses: `(x - a)^6000`.
+        Atom::Factor(p) => {
+            let p = if reads_negated(p) { p.neg() } else { p.clone() };
+            paren(&poly(&p, style), style)
         }
         Atom::Abs(p) => {
             if plain {

@@ -243,6 +243,7 @@ impl Ctx<'_> {
             }
             Atom::Sqrt(p) => self.root(p, 2),
             Atom::Root(p, m) => self.root(p, *m),
+            Atom::Factor(p) => self.poly(p),
             Atom::Abs(p) => {
                 let s = self.poly(p)?;
                 match self.signs.rat(&s[0]) {

@@ -154,6 +154,7 @@ impl Assumptions {
         match &*atom::get(a) {
             Atom::Sym(_) => self.declared(a),
             Atom::Pi | Atom::Exp(_) => Sign::Pos,
+            Atom::Factor(p) => self.poly(p),
             Atom::Sqrt(p) => {
                 if self.poly(p) == Sign::Pos {
                     Sign::Pos

@@ -59,6 +59,10 @@ impl<'a> Subst<'a> {
                 .poly_changed(p)?
                 .map(|v| func::abs(&v, s))
                 .transpose()?,
+            Atom::Factor(p) => self
+                .poly_changed(p)?
+                .map(|v| super::power::refactor(&v))
+                .transpose()?,
             Atom::Sin(u) => self.rat_changed(u)?.map(|v| trig::sin(&v)).transpose()?,
             Atom::Cos(u) => self.rat_changed(u)?.map(|v| trig::cos(&v)).transpose()?,
             Atom::Exp(u) => self.rat_changed(u)?.map(|v| func::exp(&v)).transpose()?,
@@ -251,7 +255,7 @@ pub fn atom_depends_on(a: AtomId, x: AtomId) -> bool {
     let r = |r: &Rat| depends_on(r, x);
     match &*at {
         Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => false,
-        Atom::Sqrt(q) | Atom::Root(q, _) | Atom::Abs(q) => p(q),
+        Atom::Sqrt(q) | Atom::Root(q, _) | Atom::Abs(q) | Atom::Factor(q) => p(q),
         Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) => r(u),
         Atom::Pow(b, e) => r(b) || r(e),
         Atom::At(_, u) => r(u),
@@ -271,7 +275,9 @@ pub fn atoms_within(a: AtomId) -> Vec<AtomId> {
         };
         match &*at {
             Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => {}
-            Atom::Sqrt(q) | Atom::Root(q, _) | Atom::Abs(q) => todo.extend(q.atoms()),
+            Atom::Sqrt(q) | Atom::Root(q, _) | Atom::Abs(q) | Atom::Factor(q) => {
+                todo.extend(q.atoms())
+            }
             Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) | Atom::At(_, u) => {
                 push_rat(u, &mut todo)
             }

@@ -124,7 +124,7 @@ fn a_reference_that_does_not_verify_is_refused() {
 
 #[test]
 fn a_submission_that_spends_its_budget_is_a_row_with_the_reason_and_the_class_goes_on() {
-    // Each `(u - k)^6000 = (u - k)^6000` needs far more than the 0.3 s budget; the
+    // Each `int((u - k)^6000, u, 0, 1) = …` needs far more than the 0.3 s budget; the
     // correct submission beside it is marked as usual.
     let (out, err, code) = mark(&[
         "--reference",
