@@ -100,12 +100,8 @@ fn decide_with(
     if d.is_zero() {
         return Verdict::Equal;
     }
-    // Trigonometric atoms of related angles: rewrite in a common base angle and retry.
-    if crate::normal::trig::rebase(&d, s).is_ok_and(|r| r.is_zero()) {
-        return Verdict::Equal;
-    }
-    // Large powers of sums kept factored: zero, or written out where affordable.
-    let d = crate::normal::power::settle(&d, s);
+    // Related angles, large powers kept factored, products of abs and roots.
+    let d = crate::normal::settle(&d, s);
     if d.is_zero() {
         return Verdict::Equal;
     }

@@ -207,8 +207,8 @@ fn eliminate_with(
             divisor: sol.divisor,
         });
     }
-    // Large powers of sums kept factored: zero, or written out where affordable.
-    let target = crate::normal::power::settle(&target, signs);
+    // Related angles, large powers kept factored, products of abs and roots.
+    let target = crate::normal::settle(&target, signs);
     let mut stuck = Vec::new();
     unknowns_within(&target, is_unknown, &mut stuck);
     stuck.sort_by(|a, b| atom::cmp_atoms(*a, *b));

@@ -133,15 +133,8 @@ impl Checker<'_, '_> {
                 ))
             }
         };
-        let mut diff = a.sub(&b).map_err(e0101(span))?;
-        // Sines and cosines of related angles, rewritten in a common base angle.
-        if !diff.is_zero()
-            && crate::normal::trig::rebase(&diff, &self.env.signs).is_ok_and(|r| r.is_zero())
-        {
-            diff = Rat::zero();
-        }
-        // Large powers of sums kept factored: zero, or written out where affordable.
-        let diff = crate::normal::power::settle(&diff, &self.env.signs);
+        // Related angles, large powers kept factored, products of abs and roots.
+        let diff = crate::normal::settle(&a.sub(&b).map_err(e0101(span))?, &self.env.signs);
         // `by [..]` must name facts before this line, even where none is needed.
         if input.restricted() {
             match self.facts_for(input.by(), span) {

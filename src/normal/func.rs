@@ -148,8 +148,10 @@ fn root_poly(p: &Poly, n: u32, s: &Assumptions) -> Result<Rat, NormError> {
     let (k, factors) = split_power(&radicand, n);
     let mut out = Rat::constant(Q::new(BigInt::from(k), BigInt::from(b)));
     for (f, e) in factors {
-        let base = Poly::constant(q_of(num_traits::pow(f, e as usize)));
-        out = out.mul(&Rat::atom(root_atom(base, n)))?;
+        // A positive number: root_n(f^e) = root_(n/g)(f^(e/g)), g = gcd(e, n) (9^(1/4) = sqrt(3)).
+        let g = e.gcd(&n);
+        let base = Poly::constant(q_of(num_traits::pow(f, (e / g) as usize)));
+        out = out.mul(&Rat::atom(root_atom(base, n / g)))?;
     }
     // Monomial factors: a^e = a^(n·(e/n)) · a^(e mod n).
     let mc = rest.mono_content();
@@ -174,6 +176,14 @@ fn root_poly(p: &Poly, n: u32, s: &Assumptions) -> Result<Rat, NormError> {
         }
     }
     let inside = Mono::from_pairs(inside).ok_or(Limit::Exponent)?;
+    // The sum: over its squarefree parts, each power taken out or kept in the same way.
+    let rest = if rest.len() > 1 && !rest.is_one() {
+        let (outside, kept) = root_of_parts(&rest, n, s)?;
+        out = out.mul(&outside)?;
+        kept
+    } else {
+        rest
+    };
     let mut radicand = rest.mul_term(&inside, &Q::one())?;
     if neg {
         if even {
@@ -198,6 +208,71 @@ fn root_poly(p: &Poly, n: u32, s: &Assumptions) -> Result<Rat, NormError> {
     out.mul(&Rat::atom(root_atom(radicand, n)))
 }
 
+/// The `n`-th root of a primitive sum `p = ∏ sᵢ^i` (its squarefree parts): the factors
+/// that come out, and the part that stays under the root. `sᵢ^i = sᵢ^(n·q) · sᵢ^r`: the
+/// first comes out as `|sᵢ|^q` (`sᵢ^q` for odd `n` or `sᵢ ≥ 0`); the second is a root of
+/// its own where [`part_root`] allows, else it stays inside.
+fn root_of_parts(p: &Poly, n: u32, s: &Assumptions) -> Result<(Rat, Poly), NormError> {
+    let parts = super::gcd::squarefree(p)?;
+    if parts.len() == 1 && parts[0].1 == 1 {
+        return Ok((Rat::one(), p.clone()));
+    }
+    let mut out = Rat::one();
+    let mut kept = Poly::one();
+    for (part, i) in parts {
+        let sign = s.poly(&part);
+        let (q, r) = (i / n, i % n);
+        if q > 0 {
+            let base = Rat::poly(part.clone())?;
+            let f = if n % 2 == 0 && !matches!(sign, Sign::Pos | Sign::NonNeg) {
+                abs(&base, s)?
+            } else {
+                base
+            };
+            out = out.mul(&f.powi(i64::from(q))?)?;
+        }
+        if r > 0 {
+            match part_root(&part, sign, r, n, s)? {
+                Some(f) => out = out.mul(&f)?,
+                None => kept = kept.mul(&part.pow(u64::from(r))?)?,
+            }
+        }
+    }
+    Ok((out, kept))
+}
+
+/// `root_n(b^r)` (`0 < r < n`) as a factor of its own, reduced by `g = gcd(r, n)` to
+/// `root_(n/g)(b^(r/g))`, where that is an identity wherever both sides are defined: odd
+/// roots are multiplicative; for even `n`, `b ≥ 0` may split off, and so may an even
+/// power, as `|b|^r`. `None`: nothing to gain (or not allowed); it stays inside.
+fn part_root(
+    b: &Poly,
+    sign: Sign,
+    r: u32,
+    n: u32,
+    s: &Assumptions,
+) -> Result<Option<Rat>, NormError> {
+    let g = r.gcd(&n);
+    let nonneg = matches!(sign, Sign::Pos | Sign::NonNeg);
+    if g == 1 {
+        // Already in lowest terms: a root of its own only where it may split off.
+        if !nonneg {
+            return Ok(None);
+        }
+        // root_n(b^r) = root_n(b)^r for b ≥ 0: one form for `b^(r/n)` however written.
+        return Ok(Some(Rat::atom(root_atom(b.clone(), n)).powi(i64::from(r))?));
+    }
+    // g > 1: the index and the exponent both shrink, so the recursion ends.
+    let b = Rat::poly(b.clone())?;
+    if n % 2 == 1 || nonneg {
+        return root(&b.powi(i64::from(r / g))?, n / g, s).map(Some);
+    }
+    if r % 2 == 0 {
+        return root(&abs(&b, s)?.powi(i64::from(r / g))?, n / g, s).map(Some);
+    }
+    Ok(None)
+}
+
 /// The `n`-th root of `a^e` (`0 < e < n`) as a factor of its own, where that is an
 /// identity wherever both sides are defined: a root of a root is one root
 /// (`sqrt(sqrt(x)) = x^(1/4)`), an odd root is multiplicative, and an even root of a
@@ -207,6 +282,10 @@ fn split_root(a: atom::AtomId, e: u32, n: u32, s: &Assumptions) -> Result<Option
     let inner = match &*atom::get(a) {
         Atom::Sqrt(p) => Some((p.clone(), 2)),
         Atom::Root(p, m) => Some((p.clone(), *m)),
+        // exp(u)^(e/n) = exp(e u/n): exp is positive.
+        Atom::Exp(u) => {
+            return exp(&u.scale(&Q::new(BigInt::from(e), BigInt::from(n)))).map(Some);
+        }
         _ => None,
     };
     if let Some((p, m)) = inner {
@@ -217,9 +296,17 @@ fn split_root(a: atom::AtomId, e: u32, n: u32, s: &Assumptions) -> Result<Option
             return root(&radicand, n * m, s).map(Some);
         }
     }
-    if n % 2 == 1 || matches!(s.atom(a), Sign::Pos | Sign::NonNeg) {
-        let p = Poly::atom(a).pow(u64::from(e))?;
-        return Ok(Some(Rat::atom(root_atom(p, n))));
+    let g = e.gcd(&n);
+    let nonneg = matches!(s.atom(a), Sign::Pos | Sign::NonNeg);
+    if g > 1 && (n % 2 == 1 || nonneg || e % 2 == 0) {
+        // root_n(a^e) = root_(n/g)(a^(e/g)), through |a| for an even power under an even
+        // root (`(x^2)^(1/4) = sqrt(abs(x))`).
+        return part_root(&Poly::atom(a), s.atom(a), e, n, s);
+    }
+    if n % 2 == 1 || nonneg {
+        // root_n(a^e) = root_n(a)^e (odd roots for every sign, even ones for a ≥ 0): one
+        // form for `a^(e/n)` however written.
+        return Ok(Some(Rat::atom(root_atom(Poly::atom(a), n)).powi(i64::from(e))?));
     }
     Ok(None)
 }
@@ -338,12 +425,31 @@ fn abs_poly(p: &Poly, s: &Assumptions) -> Result<Rat, NormError> {
     if rest.is_one() {
         return Ok(out);
     }
-    let f = match s.poly(&rest) {
-        Sign::Pos | Sign::NonNeg => Rat::poly(rest)?,
-        Sign::Neg | Sign::NonPos => Rat::poly(rest.neg())?,
-        _ => Rat::atom(atom::intern(Atom::Abs(rest))),
-    };
-    out.mul(&f)
+    match s.poly(&rest) {
+        Sign::Pos | Sign::NonNeg => return out.mul(&Rat::poly(rest)?),
+        Sign::Neg | Sign::NonPos => return out.mul(&Rat::poly(rest.neg())?),
+        _ => {}
+    }
+    // |∏ sᵢ^i| over the squarefree parts: even powers and parts of known sign come out;
+    // the parts of odd power and unknown sign stay in one abs.
+    let mut inside = Poly::one();
+    for (part, i) in super::gcd::squarefree(&rest)? {
+        let sign = s.poly(&part);
+        let odd = i % 2 == 1 && !matches!(sign, Sign::Pos | Sign::NonNeg | Sign::Neg | Sign::NonPos);
+        let e = if odd { i - 1 } else { i };
+        let mut f = part.pow(u64::from(e))?;
+        if matches!(sign, Sign::Neg | Sign::NonPos) && e % 2 == 1 {
+            f = f.neg();
+        }
+        out = out.mul(&Rat::poly(f)?)?;
+        if odd {
+            inside = inside.mul(&part)?;
+        }
+    }
+    if inside.is_one() {
+        return Ok(out);
+    }
+    out.mul(&Rat::atom(atom::intern(Atom::Abs(inside))))
 }
 
 /// `exp(u)`: `exp(0) = 1`, `exp(k·ln(v)) = v^k`, otherwise one exponential atom.
@@ -433,18 +539,52 @@ pub fn ln(u: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
                 left = left.mul(&Poly::atom(a))?;
             }
         }
-        if !rest.is_one() {
-            if s.poly(&rest) == Sign::Pos {
-                out = out.add(&scale(ln_abs(&Rat::poly(rest)?, s)?, 1))?;
-            } else {
-                left = left.mul(&rest)?;
+        // The sum, over its squarefree parts, like the atoms above:
+        // ln((a + 1)^2) = 2 ln(a + 1) for a > 0, ln((x + 1)^2) = 2 ln(abs(x + 1)).
+        // The parts have positive leading coefficients: their product is ±rest.
+        // ±(1 − sin(u)²) is ±cos(u)², which the rules keep as 1 − sin(u)²: an even power.
+        let cos_sq = match (
+            one_minus_sin_squared(&rest),
+            one_minus_sin_squared(&rest.neg()),
+        ) {
+            (Some(u), _) => Some((u, false)),
+            (None, Some(u)) => Some((u, true)),
+            _ => None,
+        };
+        if let Some((u, negated)) = cos_sq {
+            if negated {
+                left = left.neg();
+            }
+            out = out.add(&scale(ln_abs(&super::trig::cos(&u)?, s)?, 2))?;
+            leftover[k] = left;
+            continue;
+        }
+        if rest.lead().is_some_and(|t| t.1.is_negative()) {
+            left = left.neg();
+        }
+        let parts = if rest.len() > 1 {
+            super::gcd::squarefree(&rest)?
+        } else {
+            Vec::new()
+        };
+        for (part, i) in parts {
+            let pr = Rat::poly(part.clone())?;
+            if s.poly(&part) == Sign::Pos {
+                out = out.add(&scale(ln_abs(&pr, s)?, i64::from(i)))?;
+                continue;
+            }
+            if i >= 2 {
+                out = out.add(&scale(ln_abs(&pr, s)?, i64::from(i - i % 2)))?;
+            }
+            if i % 2 == 1 {
+                left = left.mul(&part)?;
             }
         }
         leftover[k] = left;
     }
     let [num, den] = leftover;
-    if !(num.is_one() && den.is_one()) {
-        let v = Rat::new(num, den)?;
+    let v = Rat::new(num, den)?;
+    if v != Rat::one() {
         let l = match v.as_atom().map(atom::get) {
             Some(a) => match &*a {
                 Atom::Exp(w) => w.clone(),

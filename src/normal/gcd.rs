@@ -471,6 +471,42 @@ fn prem(a: &Poly, b: &Poly, v: AtomId) -> Result<Poly, Limit> {
     Ok(r)
 }
 
+/// The squarefree decomposition of `p` as a polynomial in its atoms (taken as free
+/// variables, so the product is `p` whatever relations the atoms satisfy): parts `sᵢ`,
+/// pairwise coprime and squarefree, each primitive with a positive leading coefficient,
+/// with `p = c · ∏ sᵢ^i` for a constant `c`.
+/// In characteristic zero, `g = gcd(p, ∂p/∂x₁, …, ∂p/∂xₙ) = ∏ sᵢ^(i−1)`; then Yun's
+/// step peels the parts off one multiplicity at a time.
+pub fn squarefree(p: &Poly) -> Result<Vec<(Poly, u32)>, Limit> {
+    let exact = |a: &Poly, b: &Poly| -> Result<Poly, Limit> { div_exact(a, b)?.ok_or(Limit::Terms) };
+    let mut g = p.clone();
+    for a in p.atoms() {
+        if g.as_constant().is_some() {
+            break;
+        }
+        g = gcd(&g, &p.deriv_atom(a))?;
+    }
+    if g.as_constant().is_some() {
+        return Ok(vec![(p.primitive(), 1)]);
+    }
+    let mut w = exact(p, &g)?; // s₁ s₂ s₃ ⋯
+    let mut y = g; // s₂ s₃² ⋯
+    let mut out = Vec::new();
+    let mut i = 1u32;
+    while w.as_constant().is_none() {
+        let z = gcd(&w, &y)?; // s_{i+1} s_{i+2} ⋯
+        let s = exact(&w, &z)?;
+        if s.as_constant().is_none() {
+            out.push((s.primitive(), i));
+        }
+        y = exact(&y, &z)?;
+        w = z;
+        i = i.checked_add(1).ok_or(Limit::Exponent)?;
+        super::poly::check_deadline()?;
+    }
+    Ok(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::{div_exact, mulmod, P};

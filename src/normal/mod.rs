@@ -6,6 +6,7 @@
 pub mod atom;
 pub mod func;
 pub mod gcd;
+pub mod merge;
 pub mod mono;
 pub mod pack;
 pub mod poly;
@@ -26,6 +27,29 @@ pub use rat::Rat;
 pub use sign::{Assumptions, Range, Sign};
 
 use std::fmt;
+
+/// A difference `d` (zero when a step holds) looked at again where its normal form is
+/// not canonical: zero when sines and cosines of related angles, large powers kept
+/// factored ([`power::settle`]) or products of `abs` and roots ([`merge::merged`]) show
+/// it zero; otherwise `d`, with kept factors written out where that is affordable.
+pub fn settle(d: &Rat, s: &Assumptions) -> Rat {
+    if d.is_zero() {
+        return Rat::zero();
+    }
+    let rebased = trig::rebase(d, s).ok();
+    if rebased.as_ref().is_some_and(|r| r.is_zero()) {
+        return Rat::zero();
+    }
+    let d = power::settle(d, s);
+    let merged_zero = |r: &Rat| {
+        merge::merged(r, s).is_some_and(|m| m.is_zero())
+            || merge::merged_logs(r, s).is_some_and(|m| m.is_zero())
+    };
+    if d.is_zero() || merged_zero(&d) || rebased.as_ref().is_some_and(merged_zero) {
+        return Rat::zero();
+    }
+    d
+}
 
 /// A resource limit that an operation would exceed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -56,10 +56,9 @@ fn factored(p: &Poly, e: u64) -> Result<Rat, NormError> {
     };
     let coeff = pow_q_checked(&c, e32)?;
     let mut pairs = mc.pow(e32).ok_or(Limit::Exponent)?.pairs().to_vec();
-    for (s, i) in squarefree(&prim)? {
-        // Each part made primitive with a positive leading coefficient: their product is
-        // primitive with a positive leading coefficient (Gauss), so it is `prim` itself.
-        let part = s.primitive();
+    // The parts are primitive with positive leading coefficients, so their product is
+    // primitive with a positive leading coefficient (Gauss): it is `prim` itself.
+    for (part, i) in super::gcd::squarefree(&prim)? {
         let exp = i.checked_mul(e32).ok_or(Limit::Exponent)?;
         if part.len() == 1 {
             // A part that is a monomial (cannot happen for a primitive sum, but costs nothing).
@@ -73,42 +72,6 @@ fn factored(p: &Poly, e: u64) -> Result<Rat, NormError> {
     Rat::poly(Poly::term(kept, coeff))
 }
 
-/// The squarefree decomposition of `p` as a polynomial in its atoms (taken as free
-/// variables, so the product is `p` whatever relations the atoms satisfy): parts `sᵢ`,
-/// pairwise coprime and squarefree, with `p = c · ∏ sᵢ^i` for a constant `c`.
-/// In characteristic zero, `g = gcd(p, ∂p/∂x₁, …, ∂p/∂xₙ) = ∏ sᵢ^(i−1)`; then Yun's
-/// step peels the parts off one multiplicity at a time.
-fn squarefree(p: &Poly) -> Result<Vec<(Poly, u32)>, NormError> {
-    use super::gcd::{div_exact, gcd};
-    let exact = |a: &Poly, b: &Poly| -> Result<Poly, NormError> {
-        div_exact(a, b)?.ok_or(NormError::Limit(Limit::Terms))
-    };
-    let mut g = p.clone();
-    for a in p.atoms() {
-        if g.as_constant().is_some() {
-            break;
-        }
-        g = gcd(&g, &p.deriv_atom(a))?;
-    }
-    if g.as_constant().is_some() {
-        return Ok(vec![(p.clone(), 1)]);
-    }
-    let mut w = exact(p, &g)?; // s₁ s₂ s₃ ⋯
-    let mut y = g; // s₂ s₃² ⋯
-    let mut out = Vec::new();
-    let mut i = 1u32;
-    while w.as_constant().is_none() {
-        let z = gcd(&w, &y)?; // s_{i+1} s_{i+2} ⋯
-        let s = exact(&w, &z)?;
-        if s.as_constant().is_none() {
-            out.push((s, i));
-        }
-        y = exact(&y, &z)?;
-        w = z;
-        i = i.checked_add(1).ok_or(Limit::Exponent)?;
-    }
-    Ok(out)
-}
 
 /// `r` with the sums of its numerator and denominator kept as factors: the value of a
 /// kept factor whose sum a substitution changed.
@@ -394,11 +357,8 @@ mod tests {
         let kept = int_pow(&base, 64).unwrap();
         let s = Assumptions::default();
         assert_eq!(expand(&kept, &s).unwrap(), base.powi(64).unwrap());
-        let mut parts = squarefree(&x1.powi(3).unwrap().mul(&d).unwrap().num().clone())
-            .unwrap()
-            .into_iter()
-            .map(|(p, i)| (p.primitive(), i))
-            .collect::<Vec<_>>();
+        let mut parts =
+            crate::normal::gcd::squarefree(x1.powi(3).unwrap().mul(&d).unwrap().num()).unwrap();
         parts.sort_by_key(|p| p.1);
         assert_eq!(parts, vec![(d.num().primitive(), 1), (x1.num().clone(), 3)]);
     }

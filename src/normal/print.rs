@@ -257,6 +257,21 @@ fn factors(m: &Mono, style: Style) -> Vec<String> {
                 }
             }
         }
+        if let (Atom::Root(p, n), true) = (&*atom, e > 1) {
+            // A power of a root as one fractional power: (z)^(2/3), \sqrt[3]{z^{2}}.
+            out.push(match style {
+                Style::Plain => format!("({})^({e}/{n})", poly(p, style)),
+                Style::Latex => {
+                    let inner = if p.len() == 1 {
+                        poly(p, style)
+                    } else {
+                        paren(&poly(p, style), style)
+                    };
+                    format!("\\sqrt[{n}]{{{inner}^{{{e}}}}}")
+                }
+            });
+            continue;
+        }
         let base = atom_text(&atom, style);
         if e == 1 {
             out.push(base);

@@ -204,12 +204,18 @@ impl Assumptions {
         }
     }
 
-    /// The sign of a polynomial, term by term (and `1 − sin(u)²`, which is `cos(u)²`).
+    /// The sign of a polynomial, term by term (and `±(1 − sin(u)²)`, which is `±cos(u)²`).
     pub fn poly(&self, p: &Poly) -> Sign {
         if let Some(u) = super::func::one_minus_sin_squared(p) {
             return match super::ranges::trig_sign(self, &u, true) {
                 s if s.is_nonzero() => Sign::Pos,
                 _ => Sign::NonNeg,
+            };
+        }
+        if let Some(u) = super::func::one_minus_sin_squared(&p.neg()) {
+            return match super::ranges::trig_sign(self, &u, true) {
+                s if s.is_nonzero() => Sign::Neg,
+                _ => Sign::NonPos,
             };
         }
         let mut total = Sign::Zero;

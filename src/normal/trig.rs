@@ -75,6 +75,33 @@ fn exact_pi_twelfths(j: i64) -> Result<Pair, NormError> {
     multiple(&(c15, s15), j)
 }
 
+/// `(cos(jπ/8), sin(jπ/8))` exactly for odd `j` (even `j` are twelfths): from
+/// `cos(π/8) = sqrt(2 + sqrt(2))/2` and `sin(π/8) = sqrt(2 - sqrt(2))/2`, by the
+/// symmetries of the circle. Products of the two radicals are merged only when a
+/// difference is settled ([`super::merge`]), so half angles of `x + π/4` are decided.
+fn exact_pi_odd_eighths(j: i64) -> Result<Pair, NormError> {
+    let half = Q::new(BigInt::from(1), BigInt::from(2));
+    let r2 = sqrt_prime(2);
+    let c = Rat::atom(atom::intern(Atom::Sqrt(
+        Rat::int(2).add(&r2)?.num().clone(),
+    )))
+    .scale(&half);
+    let s = Rat::atom(atom::intern(Atom::Sqrt(
+        Rat::int(2).sub(&r2)?.num().clone(),
+    )))
+    .scale(&half);
+    Ok(match j.rem_euclid(16) {
+        1 => (c, s),
+        3 => (s, c),
+        5 => (s.neg(), c),
+        7 => (c.neg(), s),
+        9 => (c.neg(), s.neg()),
+        11 => (s.neg(), c.neg()),
+        13 => (s, c.neg()),
+        _ => (c, s.neg()),
+    })
+}
+
 /// The pair of the argument `u`.
 fn pair(u: &Rat) -> Result<Pair, NormError> {
     if u.is_zero() {
@@ -155,6 +182,10 @@ fn pi_pair(q: &Q) -> Result<Pair, NormError> {
     if twelve.is_integer() {
         let j = twelve.to_integer().to_i64().unwrap_or(0);
         return exact_pi_twelfths(j);
+    }
+    let eight = &r * Q::from_integer(BigInt::from(8));
+    if eight.is_integer() {
+        return exact_pi_odd_eighths(eight.to_integer().to_i64().unwrap_or(1));
     }
     // sin(x + π) = −sin x: keep the atom's angle in (0, π).
     let (r, flip) = if r > Q::one() {

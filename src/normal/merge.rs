@@ -1,0 +1,255 @@
+//! A second normal form for products of absolute values and roots.
+//!
+//! The constructors split `abs` and roots over what they can see (squarefree parts,
+//! signed symbols), but they cannot factor: `abs(x^2 - 4)` is one atom, `abs(x - 2)
+//! abs(x + 2)` two. [`merged`] multiplies, in every term, the `abs` atoms into one and
+//! the roots of one index into one, and rebuilds each product with its constructor, so
+//! both become `abs(x^2 - 4)`. Each merge is an identity wherever both sides are defined
+//! (`abs(p) abs(q) = abs(p q)` everywhere; `sqrt(p) sqrt(q) = sqrt(p q)` where
+//! `p, q ≥ 0`), which is how the rules of [`reduce`](super::reduce) hold too. The checker
+//! uses it only to show a difference zero.
+
+use super::atom::{self, Atom, AtomId};
+use super::func;
+use super::mono::Mono;
+use super::poly::Poly;
+use num_traits::One;
+use super::rat::Rat;
+use super::sign::Assumptions;
+use super::NormError;
+use std::collections::BTreeMap;
+
+/// `r` with, in each term, the `abs` atoms merged into one and the roots of each index
+/// merged into one; `None` when no term has two to merge (or a product is refused).
+pub fn merged(r: &Rat, s: &Assumptions) -> Option<Rat> {
+    let (num, a) = merged_poly(r.num(), s).ok()?;
+    let (den, b) = merged_poly(r.den(), s).ok()?;
+    if !(a || b) {
+        return None;
+    }
+    num.div(&den).ok()
+}
+
+/// How a term's atom takes part in a merge.
+enum Part {
+    /// `abs(p)^e`: all of a term's merge into one `abs`.
+    Abs(Poly),
+    /// `root_n(p)^e` with `p ≥ 0` by the declared signs (or a number): all of a term's
+    /// merge into one root of the least common index.
+    Nonneg(u32, Poly, u32),
+    /// `root_n(p)^e`, `n` odd, `p` of unknown sign: odd roots of one index merge (they
+    /// are multiplicative for every sign), but not with even roots.
+    Odd(u32, Poly, u32),
+}
+
+fn part(a: AtomId, e: u32, s: &Assumptions) -> Option<Part> {
+    let (p, n) = match &*atom::get(a) {
+        Atom::Abs(p) => return Some(Part::Abs(p.pow(u64::from(e)).ok()?)),
+        Atom::Sqrt(p) => (p.clone(), 2),
+        Atom::Root(p, n) => (p.clone(), *n),
+        _ => return None,
+    };
+    // Only what the signs show nonnegative: `sqrt(x) sqrt(y) = sqrt(x y)` where both
+    // sides are defined, but the right side is defined for x, y < 0 too, so merging
+    // roots of unknown sign would verify a step that is false there.
+    let nonneg = matches!(s.poly(&p), super::Sign::Pos | super::Sign::NonNeg)
+        || number_sign(&p).is_some_and(|x| !num_traits::Signed::is_negative(&x));
+    if nonneg {
+        Some(Part::Nonneg(n, p, e))
+    } else if n % 2 == 1 {
+        Some(Part::Odd(n, p, e))
+    } else {
+        None
+    }
+}
+
+/// The sign of a number `a + b·sqrt(c)` (`c` a positive integer), as ±1 or 0: `a + b√c`
+/// has the sign of `a` when `a² > b²c`, else of `b` (the radicands of `cos(π/8)`).
+fn number_sign(p: &Poly) -> Option<super::Q> {
+    use num_traits::{Signed, Zero};
+    let (mut a, mut b, mut c) = (super::Q::zero(), super::Q::zero(), None);
+    for (m, q) in p.terms() {
+        match m.pairs() {
+            [] => a = q.clone(),
+            [(x, 1)] => match &*atom::get(*x) {
+                Atom::Sqrt(r) if c.is_none() => {
+                    c = Some(r.as_constant().filter(|v| v.is_positive())?);
+                    b = q.clone();
+                }
+                _ => return None,
+            },
+            _ => return None,
+        }
+    }
+    let c = c.unwrap_or_else(super::Q::zero);
+    let signum = |q: &super::Q| q.signum();
+    let (aa, bb) = (&a * &a, &b * &b * &c);
+    Some(if aa > bb {
+        signum(&a)
+    } else if bb > aa {
+        signum(&b)
+    } else if signum(&a) == signum(&b) {
+        signum(&a)
+    } else {
+        super::Q::zero()
+    })
+}
+
+fn merged_poly(p: &Poly, s: &Assumptions) -> Result<(Rat, bool), NormError> {
+    use num_integer::Integer;
+    let mut total = Rat::zero();
+    let mut any = false;
+    for (m, q) in p.terms() {
+        let mut abs = (Poly::one(), 0usize);
+        let mut nonneg: Vec<(u32, Poly, u32)> = Vec::new();
+        let mut odd: BTreeMap<u32, (Poly, usize)> = BTreeMap::new();
+        let mut rest = Vec::new();
+        for &(a, e) in m.pairs() {
+            match part(a, e, s) {
+                Some(Part::Abs(v)) => {
+                    abs.0 = abs.0.mul(&v)?;
+                    abs.1 += 1;
+                }
+                Some(Part::Nonneg(n, p, e)) => nonneg.push((n, p, e)),
+                Some(Part::Odd(n, p, e)) => {
+                    let g = odd.entry(n).or_insert((Poly::one(), 0));
+                    g.0 = g.0.mul(&p.pow(u64::from(e))?)?;
+                    g.1 += 1;
+                }
+                None => rest.push((a, e)),
+            }
+        }
+        let rest = Mono::from_pairs(rest).ok_or(super::Limit::Exponent)?;
+        let mut term = Rat::poly(Poly::term(rest, q.clone()))?;
+        if abs.1 > 0 {
+            any |= abs.1 >= 2;
+            term = term.mul(&func::abs(&Rat::poly(abs.0)?, s)?)?;
+        }
+        let lcm = nonneg.iter().fold(1u32, |l, x| l.lcm(&x.0));
+        if nonneg.len() >= 2 && lcm <= 64 {
+            // ∏ root_nᵢ(pᵢ)^eᵢ = root_L(∏ pᵢ^(eᵢ L/nᵢ)), every pᵢ ≥ 0.
+            any = true;
+            let mut radicand = Poly::one();
+            for (n, p, e) in &nonneg {
+                radicand = radicand.mul(&p.pow(u64::from(*e) * u64::from(lcm / n))?)?;
+            }
+            term = term.mul(&func::root(&Rat::poly(radicand)?, lcm, s)?)?;
+        } else {
+            for (n, p, e) in nonneg {
+                term = term.mul(&func::root(&Rat::poly(p)?, n, s)?.powi(i64::from(e))?)?;
+            }
+        }
+        for (n, (v, count)) in odd {
+            any |= count >= 2;
+            term = term.mul(&func::root(&Rat::poly(v)?, n, s)?)?;
+        }
+        total = total.add(&term)?;
+    }
+    Ok((total, any))
+}
+
+/// `r`'s numerator with the logarithms that share a cofactor merged: `Σ qₖ ln(uₖ) · M`
+/// is `ln(∏ uₖ^(D qₖ)) · M / D` (every `uₖ > 0` wherever `ln(uₖ)` is defined), rebuilt by
+/// `ln`, so `ln(a + 1) + ln(a + 5c)` meets `ln(a² + 5ac + a + 5c)`. The numerator alone
+/// decides whether a difference is zero. `None` when nothing merges.
+pub fn merged_logs(r: &Rat, s: &Assumptions) -> Option<Rat> {
+    use num_integer::Integer;
+    use num_traits::ToPrimitive;
+    let mut groups: BTreeMap<Vec<(AtomId, u32)>, Vec<(Rat, super::Q)>> = BTreeMap::new();
+    let mut others = Vec::new();
+    for (m, q) in r.num().terms() {
+        let lns: Vec<(AtomId, u32)> = m
+            .pairs()
+            .iter()
+            .filter(|(a, _)| matches!(&*atom::get(*a), Atom::Ln(_)))
+            .copied()
+            .collect();
+        match lns.as_slice() {
+            [(a, 1)] => {
+                let Atom::Ln(u) = &*atom::get(*a) else {
+                    continue;
+                };
+                let key: Vec<(AtomId, u32)> =
+                    m.pairs().iter().filter(|p| p.0 != *a).copied().collect();
+                groups.entry(key).or_default().push((u.clone(), q.clone()));
+            }
+            _ => others.push((m.clone(), q.clone())),
+        }
+    }
+    if groups.values().all(|g| g.len() < 2) {
+        return None;
+    }
+    let mut total = Rat::poly(Poly::from_terms(others)).ok()?;
+    let mut any = false;
+    for (key, items) in groups {
+        let cofactor = Rat::poly(Poly::term(Mono::from_pairs(key)?, super::Q::one())).ok()?;
+        // ln(u) + ln(v) = ln(u v) only where u, v > 0: the signs must show it (as for
+        // roots, the right side is defined for u, v < 0 too).
+        let merge = items.len() >= 2 && items.iter().all(|(u, _)| s.rat(u) == super::Sign::Pos);
+        if !merge {
+            for (u, q) in &items {
+                let l = Rat::atom(atom::intern(Atom::Ln(u.clone())));
+                total = total.add(&l.mul(&cofactor).ok()?.scale(q)).ok()?;
+            }
+            continue;
+        }
+        any = true;
+        let den = items
+            .iter()
+            .fold(num_bigint::BigInt::from(1), |d, (_, q)| d.lcm(q.denom()));
+        let mut product = Rat::one();
+        for (u, q) in &items {
+            let k = (q * super::Q::from_integer(den.clone())).to_integer();
+            let k = k.to_i64().filter(|k| k.abs() <= 64)?;
+            product = product.mul(&u.powi(k).ok()?).ok()?;
+        }
+        let l = func::ln(&product, s).ok()?;
+        let scale = super::Q::new(num_bigint::BigInt::from(1), den);
+        total = total.add(&l.mul(&cofactor).ok()?.scale(&scale)).ok()?;
+    }
+    any.then_some(total)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sym(n: &str) -> Rat {
+        Rat::atom(atom::sym(n))
+    }
+
+    #[test]
+    fn products_of_abs_and_of_roots_merge_into_one() {
+        let s = Assumptions::default();
+        let x = sym("x");
+        let two = Rat::int(2);
+        let (m, p) = (x.sub(&two).unwrap(), x.add(&two).unwrap());
+        let lhs = func::abs(&m.mul(&p).unwrap(), &s).unwrap();
+        let rhs = func::abs(&m, &s)
+            .unwrap()
+            .mul(&func::abs(&p, &s).unwrap())
+            .unwrap();
+        assert_ne!(lhs, rhs);
+        let d = lhs.sub(&rhs).unwrap();
+        assert!(merged(&d, &s).unwrap().is_zero());
+        // sqrt(x^2 + 1) sqrt(x^2 + 2) against sqrt((x^2 + 1)(x^2 + 2)).
+        let (a, b) = (
+            x.powi(2).unwrap().add(&Rat::one()).unwrap(),
+            x.powi(2).unwrap().add(&two).unwrap(),
+        );
+        let lhs = func::sqrt(&a.mul(&b).unwrap(), &s).unwrap();
+        let rhs = func::sqrt(&a, &s)
+            .unwrap()
+            .mul(&func::sqrt(&b, &s).unwrap())
+            .unwrap();
+        assert!(merged(&lhs.sub(&rhs).unwrap(), &s).unwrap().is_zero());
+        // A false neighbour stays nonzero: abs(x - 2) abs(x + 3).
+        let q = x.add(&Rat::int(3)).unwrap();
+        let wrong = func::abs(&m, &s)
+            .unwrap()
+            .mul(&func::abs(&q, &s).unwrap())
+            .unwrap();
+        let d = func::abs(&m.mul(&p).unwrap(), &s).unwrap().sub(&wrong).unwrap();
+        assert!(!merged(&d, &s).unwrap().is_zero());
+    }
+}
