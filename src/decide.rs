@@ -440,6 +440,11 @@ pub fn find_counterexample_where(
     symbols_in(a, &mut syms);
     symbols_in(b, &mut syms);
     syms.sort_by(|x, y| atom::cmp_atoms(*x, *y));
+    // The first point where the sides differ, kept while a better one is looked for:
+    // one where they differ by more than a millionth of their size, which the guard's
+    // floating-point check can confirm (at y = 1/1000, `a/y^6 + ln(2 + y^2)` and
+    // `a/y^6 + ln(2 - y^2)` differ, but by 10⁻²⁴ of their size).
+    let mut first: Option<Counterexample> = None;
     // Ten points near 1, then sixteen far from it (large, tiny) with every pattern of
     // signs the declarations allow: `abs` and roots of squares need both signs.
     for k in 0..26usize {
@@ -499,6 +504,21 @@ pub fn find_counterexample_where(
             continue;
         };
         if va.disjoint(&vb) {
+            let well_apart = {
+                let gap = if va.hi() < vb.lo() {
+                    vb.lo() - va.hi()
+                } else {
+                    va.lo() - vb.hi()
+                };
+                let size = [va.lo(), va.hi(), vb.lo(), vb.hi()]
+                    .into_iter()
+                    .map(num_traits::Signed::abs)
+                    .fold(Q::zero(), |m, q| if q > m { q } else { m });
+                gap * Q::from_integer(BigInt::from(1_000_000)) > size
+            };
+            if !well_apart && first.is_some() {
+                continue;
+            }
             let show = |v: &Interval| {
                 if v.lo() == v.hi() {
                     show_q(v.lo())
@@ -512,14 +532,18 @@ pub fn find_counterexample_where(
                     values.insert(n, q.clone());
                 }
             }
-            return Some(Counterexample {
+            let c = Counterexample {
                 values: values.into_iter().collect(),
                 lhs: show(&va),
                 rhs: show(&vb),
-            });
+            };
+            if well_apart {
+                return Some(c);
+            }
+            first = Some(c);
         }
     }
-    None
+    first
 }
 
 /// Rigorous evaluation of normal forms at a rational point.
