@@ -306,7 +306,9 @@ fn split_root(a: atom::AtomId, e: u32, n: u32, s: &Assumptions) -> Result<Option
     if n % 2 == 1 || nonneg {
         // root_n(a^e) = root_n(a)^e (odd roots for every sign, even ones for a ≥ 0): one
         // form for `a^(e/n)` however written.
-        return Ok(Some(Rat::atom(root_atom(Poly::atom(a), n)).powi(i64::from(e))?));
+        return Ok(Some(
+            Rat::atom(root_atom(Poly::atom(a), n)).powi(i64::from(e))?,
+        ));
     }
     Ok(None)
 }
@@ -435,7 +437,8 @@ fn abs_poly(p: &Poly, s: &Assumptions) -> Result<Rat, NormError> {
     let mut inside = Poly::one();
     for (part, i) in super::gcd::squarefree(&rest)? {
         let sign = s.poly(&part);
-        let odd = i % 2 == 1 && !matches!(sign, Sign::Pos | Sign::NonNeg | Sign::Neg | Sign::NonPos);
+        let odd =
+            i % 2 == 1 && !matches!(sign, Sign::Pos | Sign::NonNeg | Sign::Neg | Sign::NonPos);
         let e = if odd { i - 1 } else { i };
         let mut f = part.pow(u64::from(e))?;
         if matches!(sign, Sign::Neg | Sign::NonPos) && e % 2 == 1 {

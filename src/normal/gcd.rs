@@ -478,7 +478,8 @@ fn prem(a: &Poly, b: &Poly, v: AtomId) -> Result<Poly, Limit> {
 /// In characteristic zero, `g = gcd(p, ∂p/∂x₁, …, ∂p/∂xₙ) = ∏ sᵢ^(i−1)`; then Yun's
 /// step peels the parts off one multiplicity at a time.
 pub fn squarefree(p: &Poly) -> Result<Vec<(Poly, u32)>, Limit> {
-    let exact = |a: &Poly, b: &Poly| -> Result<Poly, Limit> { div_exact(a, b)?.ok_or(Limit::Terms) };
+    let exact =
+        |a: &Poly, b: &Poly| -> Result<Poly, Limit> { div_exact(a, b)?.ok_or(Limit::Terms) };
     let mut g = p.clone();
     for a in p.atoms() {
         if g.as_constant().is_some() {

@@ -13,10 +13,10 @@ use super::atom::{self, Atom, AtomId};
 use super::func;
 use super::mono::Mono;
 use super::poly::Poly;
-use num_traits::One;
 use super::rat::Rat;
 use super::sign::Assumptions;
 use super::NormError;
+use num_traits::One;
 use std::collections::BTreeMap;
 
 /// `r` with, in each term, the `abs` atoms merged into one and the roots of each index
@@ -249,7 +249,10 @@ mod tests {
             .unwrap()
             .mul(&func::abs(&q, &s).unwrap())
             .unwrap();
-        let d = func::abs(&m.mul(&p).unwrap(), &s).unwrap().sub(&wrong).unwrap();
+        let d = func::abs(&m.mul(&p).unwrap(), &s)
+            .unwrap()
+            .sub(&wrong)
+            .unwrap();
         assert!(!merged(&d, &s).unwrap().is_zero());
     }
 }

@@ -72,7 +72,6 @@ fn factored(p: &Poly, e: u64) -> Result<Rat, NormError> {
     Rat::poly(Poly::term(kept, coeff))
 }
 
-
 /// `r` with the sums of its numerator and denominator kept as factors: the value of a
 /// kept factor whose sum a substitution changed.
 pub fn refactor(r: &Rat) -> Result<Rat, NormError> {
