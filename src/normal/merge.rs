@@ -155,7 +155,10 @@ fn merged_poly(p: &Poly, s: &Assumptions) -> Result<(Rat, bool), NormError> {
 pub fn merged_logs(r: &Rat, s: &Assumptions) -> Option<Rat> {
     use num_integer::Integer;
     use num_traits::ToPrimitive;
-    let mut groups: BTreeMap<Vec<(AtomId, u32)>, Vec<(Rat, super::Q)>> = BTreeMap::new();
+    // By cofactor (the term's monomial without its logarithm): each `ln(u)` with its
+    // coefficient.
+    type Logs = Vec<(Rat, super::Q)>;
+    let mut groups: BTreeMap<Vec<(AtomId, u32)>, Logs> = BTreeMap::new();
     let mut others = Vec::new();
     for (m, q) in r.num().terms() {
         let lns: Vec<(AtomId, u32)> = m
