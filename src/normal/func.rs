@@ -291,7 +291,14 @@ fn split_root(a: atom::AtomId, e: u32, n: u32, s: &Assumptions) -> Result<Option
     if let Some((p, m)) = inner {
         // root_n(root_m(p)^e) = root_nm(p^e): both need p >= 0 when either index is
         // even (and root_m(p)^e >= 0), and agree there; for odd indices, everywhere.
-        if n * m <= 64 {
+        // Taken out of an even root as a factor of its own, root_m(p)^e must be ≥ 0 on
+        // its own: so for an odd inner index, an even power or a p the signs show ≥ 0
+        // (sqrt(y cbrt(y)) is defined for y < 0, sqrt(y) root_6(y) is not).
+        let own_sign = m % 2 == 0
+            || n % 2 == 1
+            || e % 2 == 0
+            || matches!(s.poly(&p), Sign::Pos | Sign::NonNeg);
+        if n * m <= 64 && own_sign {
             let radicand = Rat::poly(p)?.powi(i64::from(e))?;
             return root(&radicand, n * m, s).map(Some);
         }

@@ -361,6 +361,9 @@ fn atom_text(a: &Atom, style: Style) -> String {
             paren(&poly(&p, style), style)
         }
         Atom::Abs(p) => {
+            // |p| = |−p|: printed with a positive first term, `abs(a - b)`, whichever sign
+            // the normal form holds (that depends on the order atoms were made in).
+            let p = &if reads_negated(p) { p.neg() } else { p.clone() };
             if plain {
                 format!("abs({})", poly(p, style))
             } else {
