@@ -139,6 +139,45 @@ fn statuses(src: &str) -> Vec<Status> {
         .collect()
 }
 
+/// Functions of products of powers of sums: what squarefree parts, roots reduced by
+/// their gcd and `abs` of parts rewrite (`sqrt((x - y)^2 (y + 2)^3)`, `ln((x + 1)^2)`).
+fn of_powers_of_sums() -> impl Strategy<Value = String> {
+    let sum = prop_oneof![
+        Just("x - 1"),
+        Just("y + 2"),
+        Just("x + y"),
+        Just("x - y"),
+        Just("2 x + 3"),
+        Just("a y - x"),
+        Just("y^2 - 1"),
+    ];
+    let factor = (sum, 1u32..=4).prop_map(|(s, k)| format!("({s})^{k}"));
+    let product = (
+        prop::collection::vec(factor, 1..=2),
+        prop_oneof![
+            Just(""),
+            Just(" y"),
+            Just(" a"),
+            Just(" (-3)"),
+            Just(" y^2")
+        ],
+    )
+        .prop_map(|(fs, m)| format!("{}{m}", fs.join(" ")));
+    let wrap = prop_oneof![
+        Just("sqrt({})"),
+        Just("abs({})"),
+        Just("ln({})"),
+        Just("({})^(1/3)"),
+        Just("({})^(1/4)"),
+        Just("({})^(2/3)"),
+        Just("({})^(3/4)"),
+        Just("({})^(1/6)"),
+        Just("sqrt(sqrt({}))"),
+        Just("abs({})^3"),
+    ];
+    (wrap, product).prop_map(|(w, p)| w.replace("{}", &p))
+}
+
 fn name() -> impl Strategy<Value = String> {
     prop_oneof![
         Just("a"),
@@ -156,6 +195,11 @@ proptest! {
 
     #[test]
     fn normal_forms_agree_with_the_independent_evaluator(e in expr()) {
+        normal_form_agrees(&e)?;
+    }
+
+    #[test]
+    fn roots_abs_and_logarithms_of_powers_of_sums_agree_with_the_evaluator(e in of_powers_of_sums()) {
         normal_form_agrees(&e)?;
     }
 
