@@ -36,6 +36,16 @@ pub fn settle(d: &Rat, s: &Assumptions) -> Rat {
     if d.is_zero() {
         return Rat::zero();
     }
+    // Symbols alone: the form is canonical, nothing to look at again (the bulk case).
+    let plain = |a: AtomId| {
+        matches!(
+            &*atom::get(a),
+            Atom::Sym(_) | Atom::Pi | Atom::Moment(..) | Atom::At(..)
+        )
+    };
+    if d.atoms().into_iter().all(plain) {
+        return d.clone();
+    }
     let rebased = trig::rebase(d, s).ok();
     if rebased.as_ref().is_some_and(|r| r.is_zero()) {
         return Rat::zero();
