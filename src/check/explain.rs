@@ -58,6 +58,19 @@ impl Checker<'_, '_> {
                 vec!["cite every fact the step needs in `by [..]`, or drop `by [..]`".into()],
             ));
         }
+        // The step is a fact divided by a factor the signs do not show nonzero.
+        if let Some((fact, d)) = red.elim.as_ref().and_then(|e| e.multiple_where.as_ref()) {
+            let d = super::signs::essential_factor(d, signs).unwrap_or_else(|| d.clone());
+            let d = plain(&d);
+            return Err(not_verified(
+                format!(
+                    "not verified: this step is {fact} divided by {d}, so it follows only where {d} != 0, which the declared signs do not show",
+                ),
+                vec![format!(
+                    "declare signs that make {d} nonzero (`symbols … != 0` or `> 0`), or state what the step needs"
+                )],
+            ));
+        }
         if full.0.is_zero() {
             return Err(not_verified(
                 "not verified: rigor could not settle this step with the facts in scope".into(),

@@ -4,7 +4,7 @@
 
 use crate::clock::Deadline;
 use crate::normal::atom::{self, AtomId};
-use crate::normal::subst::{atom_depends_on, depends_on, subst_atom};
+use crate::normal::subst::{atom_depends_on, subst_atom};
 use crate::normal::{func, Assumptions, NormError, Poly, Rat, Sign};
 
 /// A fact `value = 0`, with the name it is cited by.
@@ -44,6 +44,10 @@ pub struct Elimination {
     pub timed_out: bool,
     /// The fact the target is a constant multiple of, when that settled it.
     pub multiple_of: Option<String>,
+    /// When the target is left nonzero: a fact it is the quotient of by a factor the
+    /// signs do not show nonzero (the fact's name and that factor), so that the step
+    /// would follow where the factor is not zero.
+    pub multiple_where: Option<(String, Rat)>,
 }
 
 /// Eliminates the unknowns in `target` using `facts`; then, if the target is still not
@@ -67,12 +71,17 @@ pub fn eliminate(
                     stuck: Vec::new(),
                     timed_out: false,
                     multiple_of: Some(f.name.clone()),
+                    multiple_where: None,
                 });
             }
         }
     }
     let first = eliminate_with(target, facts, is_unknown, signs, deadline, false)?;
     if first.target.is_zero() || first.contradiction.is_some() || first.timed_out {
+        return Ok(first);
+    }
+    let first = multiple_of_a_fact(first, facts, signs);
+    if first.target.is_zero() {
         return Ok(first);
     }
     let used: Vec<&str> = first.steps.iter().map(|s| s.fact.as_str()).collect();
@@ -92,7 +101,7 @@ pub fn eliminate(
             });
         }
     }
-    let any_symbol = |a: AtomId| atom::sym_name(a).is_some();
+    let any_symbol = |a: AtomId| atom::sym_str(a).is_some();
     let second = eliminate_with(&first.target, &rest, &any_symbol, signs, deadline, false)?;
     if !second.target.is_zero() {
         return Ok(first);
@@ -100,6 +109,52 @@ pub fn eliminate(
     let mut steps = first.steps;
     steps.extend(second.steps);
     Ok(Elimination { steps, ..second })
+}
+
+/// After an elimination that left the target nonzero: a fact left over (the
+/// elimination's steps applied) of which the target is a multiple, `target = r · fact`.
+/// Where the fact holds and `r` is defined the target is zero, so the step follows when
+/// the signs make `r`'s denominator nonzero: `a b = I_G/m` is `F/m - b F a/I_G = 0`
+/// times `-I_G/F`, which needs `F != 0` (for `F = 0` the fact says nothing about `a b`),
+/// whatever else the fact holds (unknowns such as `y_G''` included). A quotient by a
+/// factor the signs do not show nonzero is never assumed: the fact and the factor are
+/// kept for the explanation instead.
+fn multiple_of_a_fact(mut e: Elimination, facts: &[Fact], signs: &Assumptions) -> Elimination {
+    let used: Vec<&str> = e.steps.iter().map(|s| s.fact.as_str()).collect();
+    let target_atoms = e.target.num().atoms();
+    for f in facts.iter().filter(|f| !used.contains(&f.name.as_str())) {
+        let Ok(value) = apply_steps(&f.value, &e.steps, signs) else {
+            continue;
+        };
+        // Cheap filter: a fact sharing no atom with the target's numerator is one of
+        // which it is a multiple only through the whole fact in the denominator, that is
+        // a fact the signs make false (which `contradiction` reports).
+        if value.is_zero() || !value.num().atoms().iter().any(|a| target_atoms.contains(a)) {
+            continue;
+        }
+        let Ok(r) = e.target.div(&value) else {
+            continue;
+        };
+        if r.den().atoms().is_empty() || signs.poly(r.den()).is_nonzero() {
+            e.target = Rat::zero();
+            e.stuck.clear();
+            e.multiple_of = Some(f.name.clone());
+            e.multiple_where = None;
+            return e;
+        }
+        // The step is the fact divided by a factor: its numerator divides the fact's.
+        let divides = target_atoms.iter().all(|a| value.num().atoms().contains(a))
+            && matches!(
+                crate::normal::gcd::div_exact(value.num(), e.target.num()),
+                Ok(Some(q)) if !q.atoms().is_empty()
+            );
+        if divides && e.multiple_where.is_none() {
+            if let Ok(d) = Rat::poly(r.den().clone()) {
+                e.multiple_where = Some((f.name.clone(), d));
+            }
+        }
+    }
+    e
 }
 
 fn eliminate_with(
@@ -110,9 +165,25 @@ fn eliminate_with(
     deadline: Option<Deadline>,
     strict: bool,
 ) -> Result<Elimination, NormError> {
+    eliminate_left(target, facts, is_unknown, signs, deadline, strict).map(|(e, _)| e)
+}
+
+/// [`eliminate_with`], with the facts left over: each fact not used, the steps applied
+/// (the same as [`apply_steps`] on it), in order, those that became zero or undefined
+/// left out.
+fn eliminate_left(
+    target: &Rat,
+    facts: &[Fact],
+    is_unknown: &dyn Fn(AtomId) -> bool,
+    signs: &Assumptions,
+    deadline: Option<Deadline>,
+    strict: bool,
+) -> Result<(Elimination, Vec<Fact>), NormError> {
     let mut conditional = false;
     let mut target = target.clone();
     let mut facts: Vec<Fact> = facts.to_vec();
+    // Each fact's solutions for the unknowns tried so far, kept while it is unchanged.
+    let mut memo: Vec<Memo> = vec![Memo::new(); facts.len()];
     let mut steps = Vec::new();
     let mut contradiction = None;
     let mut timed_out = false;
@@ -125,14 +196,18 @@ fn eliminate_with(
         // Content order, not id order: the same file is checked the same way in every run.
         // An unknown inside another atom (`sqrt(I_O/m)`) counts: substituting its value
         // rebuilds that atom.
-        let mut unknowns: Vec<AtomId> = target
-            .atoms()
-            .into_iter()
+        let target_atoms = target.atoms();
+        let mut unknowns: Vec<AtomId> = target_atoms
+            .iter()
+            .copied()
             .filter(|a| is_unknown(*a))
             .collect();
         for f in &facts {
             for a in f.value.atoms() {
-                if is_unknown(a) && !unknowns.contains(&a) && depends_on(&target, a) {
+                if is_unknown(a)
+                    && !unknowns.contains(&a)
+                    && target_atoms.iter().any(|t| atom_depends_on(*t, a))
+                {
                     unknowns.push(a);
                 }
             }
@@ -143,21 +218,24 @@ fn eliminate_with(
         }
         // A multiple of a fact (by a factor with a denominator the signs make nonzero)
         // is zero by that fact: no division, no condition.
-        if let Some(f) = facts.iter().find(|f| multiple_of(&target, &f.value, signs)) {
+        if let Some(f) = facts
+            .iter()
+            .find(|f| multiple_of((&target, &target_atoms), &f.value, signs))
+        {
             multiple = Some(f.name.clone());
             target = Rat::zero();
             break;
         }
         // The best (fact, unknown) pair: no division by a quantity of unknown sign if
         // possible, then the fact with fewest unknowns.
-        let mut best = best_pair(&unknowns, &facts, is_unknown, signs, strict)?;
+        let mut best = best_pair(&unknowns, (&facts, &mut memo), is_unknown, signs, strict)?;
         if best.as_ref().is_none_or(|b| b.0 .0) {
             // Every way to remove an unknown of the target divides: first remove another
             // unknown of the facts without dividing, if one can be.
             let mut others: Vec<AtomId> = Vec::new();
             let relevant = facts
                 .iter()
-                .filter(|f| unknowns.iter().any(|u| f.value.atoms().contains(u)));
+                .filter(|f| unknowns.iter().any(|u| f.value.contains(*u)));
             for f in relevant {
                 for a in f.value.atoms() {
                     if is_unknown(a) && !unknowns.contains(&a) && !others.contains(&a) {
@@ -166,7 +244,7 @@ fn eliminate_with(
                 }
             }
             others.sort_by(|a, b| atom::cmp_atoms(*a, *b));
-            if let Some(b) = best_pair(&others, &facts, is_unknown, signs, true)? {
+            if let Some(b) = best_pair(&others, (&facts, &mut memo), is_unknown, signs, true)? {
                 best = Some(b);
             }
         }
@@ -175,9 +253,11 @@ fn eliminate_with(
         };
         conditional |= sol.divisor.is_some();
         let fact = facts.remove(i);
+        memo.remove(i);
         target = subst_atom(&target, u, &sol.value, signs)?;
         let mut kept = Vec::with_capacity(facts.len());
-        for f in facts {
+        let mut kept_memo = Vec::with_capacity(facts.len());
+        for (f, m) in facts.into_iter().zip(std::mem::take(&mut memo)) {
             let v = match subst_atom(&f.value, u, &sol.value, signs) {
                 Ok(v) => v,
                 // The substitution makes this fact undefined: it cannot be used further.
@@ -194,12 +274,14 @@ fn eliminate_with(
             {
                 contradiction = Some(f.name.clone());
             }
+            kept_memo.push(if v == f.value { m } else { Memo::new() });
             kept.push(Fact {
                 value: v,
                 name: f.name,
             });
         }
         facts = kept;
+        memo = kept_memo;
         steps.push(Step {
             unknown: u,
             value: sol.value,
@@ -213,23 +295,25 @@ fn eliminate_with(
     unknowns_within(&target, is_unknown, &mut stuck);
     stuck.sort_by(|a, b| atom::cmp_atoms(*a, *b));
     stuck.dedup();
-    Ok(Elimination {
+    let e = Elimination {
         target,
         steps,
         contradiction,
         stuck,
         timed_out,
         multiple_of: multiple,
-    })
+        multiple_where: None,
+    };
+    Ok((e, facts))
 }
 
 /// Whether `target` is `r · fact` for an `r` whose denominator the signs make nonzero.
-fn multiple_of(target: &Rat, fact: &Rat, signs: &Assumptions) -> bool {
+/// (`atoms`: the target's.)
+fn multiple_of((target, atoms): (&Rat, &[AtomId]), fact: &Rat, signs: &Assumptions) -> bool {
     if fact.is_zero() || target.is_zero() {
         return false;
     }
     // Cheap filter: every atom of the fact's numerator must occur in the target.
-    let atoms = target.atoms();
     if !fact.num().atoms().iter().all(|a| atoms.contains(a)) {
         return false;
     }
@@ -240,21 +324,32 @@ fn multiple_of(target: &Rat, fact: &Rat, signs: &Assumptions) -> bool {
 
 type Pair = ((bool, bool, usize), usize, AtomId, Solution);
 
+/// A fact's ways of being solved (or none) for the unknowns tried, with the solution
+/// once it was needed.
+type Memo = std::collections::HashMap<AtomId, Option<(Setup, Option<Solution>)>>;
+
 /// The best (fact, unknown) pair to solve: no division by a quantity of unknown sign if
 /// possible (only such pairs when `strict`), then a fact linear in the unknown (so that
 /// `v = R omega` is substituted before `v` is taken as a root of the energy equation,
 /// whatever the order the facts are cited in), then the fact with fewest unknowns.
 fn best_pair(
     unknowns: &[AtomId],
-    facts: &[Fact],
+    (facts, memo): (&[Fact], &mut [Memo]),
     is_unknown: &dyn Fn(AtomId) -> bool,
     signs: &Assumptions,
     strict: bool,
 ) -> Result<Option<Pair>, NormError> {
     let mut best: Option<Pair> = None;
+    // Each fact's number of unknowns, counted once.
+    let mut counts: Vec<Option<usize>> = vec![None; facts.len()];
     for u in unknowns {
         for (i, f) in facts.iter().enumerate() {
-            let n_unknowns = f.value.atoms().iter().filter(|a| is_unknown(**a)).count();
+            // A fact without `u` cannot be solved for it.
+            if !f.value.num().contains(*u) {
+                continue;
+            }
+            let n_unknowns = *counts[i]
+                .get_or_insert_with(|| f.value.atoms().iter().filter(|a| is_unknown(**a)).count());
             // An equation of motion gives its highest derivative from the state: never
             // solve a fact for a derivative of which it holds a higher one (θ' from
             // θ'' = θ'/2), which would leave the state undetermined.
@@ -268,15 +363,26 @@ fn best_pair(
             {
                 continue;
             }
-            if let Some(sol) = solve_for(&f.value, *u, signs)? {
-                let rank = (sol.divisor.is_some(), nonlinear, n_unknowns);
-                if strict && rank.0 {
-                    continue;
-                }
-                if best.as_ref().is_none_or(|b| rank < b.0) {
-                    best = Some((rank, i, *u, sol));
-                }
+            let Some(m) = memo.get_mut(i) else {
+                continue;
+            };
+            if !m.contains_key(u) {
+                let s = setup(&f.value, *u, signs)?;
+                m.insert(*u, s.map(|s| (s, None)));
             }
+            let Some(Some((s, solution))) = m.get_mut(u) else {
+                continue;
+            };
+            let rank = (s.divisor.is_some(), nonlinear, n_unknowns);
+            // Only the pair chosen needs its solution.
+            if strict && rank.0 || best.as_ref().is_some_and(|b| rank >= b.0) {
+                continue;
+            }
+            let sol = match solution {
+                Some(sol) => sol.clone(),
+                None => solution.insert(finish(s, signs)?).clone(),
+            };
+            best = Some((rank, i, *u, sol));
         }
     }
     Ok(best)
@@ -284,13 +390,13 @@ fn best_pair(
 
 /// Whether `f` holds a higher time derivative of `u`'s symbol than `u`.
 fn has_higher_derivative(f: &Rat, u: AtomId) -> bool {
-    let Some(name) = atom::sym_name(u) else {
+    let Some(name) = atom::sym_str(u) else {
         return false;
     };
     let base = name.trim_end_matches('\'');
     let order = name.len() - base.len();
     f.atoms().iter().any(|a| {
-        atom::sym_name(*a).is_some_and(|n| {
+        atom::sym_str(*a).is_some_and(|n| {
             let b = n.trim_end_matches('\'');
             b == base && n.len() - b.len() > order
         })
@@ -342,14 +448,26 @@ fn unknowns_within(r: &Rat, is_unknown: &dyn Fn(AtomId) -> bool, out: &mut Vec<A
     }
 }
 
+#[derive(Clone)]
 struct Solution {
     value: Rat,
     divisor: Option<Rat>,
 }
 
-/// Solves `f = 0` for `u` when `f` is linear in `u`, or (for a positive unknown)
-/// involves `u` only as `u^n`.
-fn solve_for(f: &Rat, u: AtomId, signs: &Assumptions) -> Result<Option<Solution>, NormError> {
+/// `f = 0` as `lead · u^deg + rest = 0`, before the division that solves it.
+#[derive(Clone)]
+struct Setup {
+    lead: Rat,
+    rest: Rat,
+    deg: u32,
+    /// The divisor of the solution, when the signs do not make it nonzero.
+    divisor: Option<Rat>,
+}
+
+/// Whether `f = 0` can be solved for `u` — when `f` is linear in `u`, or (for a
+/// positive unknown) involves `u` only as `u^n` — and how: everything but the division
+/// ([`finish`]), which only the pair chosen needs.
+fn setup(f: &Rat, u: AtomId, signs: &Assumptions) -> Result<Option<Setup>, NormError> {
     let n = f.num();
     if !n.contains(u) {
         return Ok(None);
@@ -368,21 +486,34 @@ fn solve_for(f: &Rat, u: AtomId, signs: &Assumptions) -> Result<Option<Solution>
     if lead.atoms().contains(&u) {
         return Ok(None);
     }
+    // u^n = … is solved only for u > 0 (or ≥ 0): the principal root.
+    if deg != 1 && !matches!(signs.declared(u), Sign::Pos | Sign::NonNeg) {
+        return Ok(None);
+    }
     let lead = Rat::poly(lead)?;
     let rest = Rat::poly(rest)?;
     let divisor =
         (!signs.rat(&lead).is_nonzero() && lead.as_constant().is_none()).then(|| lead.clone());
-    let base = rest.neg().div(&lead)?;
-    let value = if deg == 1 {
+    Ok(Some(Setup {
+        lead,
+        rest,
+        deg,
+        divisor,
+    }))
+}
+
+/// The solution set up by [`setup`].
+fn finish(s: &Setup, signs: &Assumptions) -> Result<Solution, NormError> {
+    let base = s.rest.neg().div(&s.lead)?;
+    let value = if s.deg == 1 {
         base
     } else {
-        // u^n = base with u > 0 (or ≥ 0): the principal root.
-        match signs.declared(u) {
-            Sign::Pos | Sign::NonNeg => func::root(&base, deg, signs)?,
-            _ => return Ok(None),
-        }
+        func::root(&base, s.deg, signs)?
     };
-    Ok(Some(Solution { value, divisor }))
+    Ok(Solution {
+        value,
+        divisor: s.divisor.clone(),
+    })
 }
 
 /// `target` with every unknown the facts determine replaced, and then every parameter
@@ -406,7 +537,7 @@ pub fn reduce_fully(
             }
         }
     }
-    let any_symbol = |a: AtomId| atom::sym_name(a).is_some();
+    let any_symbol = |a: AtomId| atom::sym_str(a).is_some();
     Ok(eliminate_with(&first.target, &rest, &any_symbol, signs, deadline, true)?.target)
 }
 
@@ -420,18 +551,15 @@ pub fn zero_by_facts(d: &Rat, facts: &[Fact], signs: &Assumptions) -> bool {
     if facts.iter().any(|f| forces_zero(&f.value, d, signs)) {
         return true;
     }
-    let any_atom = |a: AtomId| !matches!(&*atom::get(a), crate::normal::Atom::Pi);
-    let Ok(e) = eliminate_with(d, facts, &any_atom, signs, None, true) else {
+    let any_atom = |a: AtomId| !atom::is_pi(a);
+    let Ok((e, left)) = eliminate_left(d, facts, &any_atom, signs, None, true) else {
         return false;
     };
     if e.target.is_zero() {
         return true;
     }
     // The facts left after the elimination may still force the reduced divisor to zero.
-    facts.iter().any(|f| {
-        apply_steps(&f.value, &e.steps, signs)
-            .is_ok_and(|v| !v.is_zero() && forces_zero(&v, &e.target, signs))
-    })
+    left.iter().any(|f| forces_zero(&f.value, &e.target, signs))
 }
 
 /// Whether the fact `value = 0` forces `d = 0`: the fact's numerator is a power of a
@@ -486,11 +614,15 @@ pub fn contradiction(facts: &[Fact], signs: &Assumptions) -> Option<String> {
             let mut atoms = f.value.num().atoms();
             atoms.sort_by(|a, b| atom::cmp_atoms(*a, *b));
             for u in atoms {
-                if matches!(&*atom::get(u), crate::normal::Atom::Pi) {
+                if atom::is_pi(u) {
                     continue;
                 }
-                if let Ok(Some(sol)) = solve_for(&f.value, u, signs) {
-                    if sol.divisor.is_none() {
+                // Only a solution without a divisor: set up first, divide only then.
+                let Ok(Some(s)) = setup(&f.value, u, signs) else {
+                    continue;
+                };
+                if s.divisor.is_none() {
+                    if let Ok(sol) = finish(&s, signs) {
                         pick = Some((i, u, sol.value));
                         break 'outer;
                     }
@@ -564,12 +696,15 @@ pub fn constrained_atoms(
                 if !is_unknown(u) || f.num().degree_in(u) != 1 {
                     continue;
                 }
-                let Ok(Some(sol)) = solve_for(f, u, signs) else {
+                let Ok(Some(s)) = setup(f, u, signs) else {
                     continue;
                 };
-                if sol.divisor.is_some() {
+                if s.divisor.is_some() {
                     continue;
                 }
+                let Ok(sol) = finish(&s, signs) else {
+                    continue;
+                };
                 let mut next = Vec::with_capacity(fs.len());
                 for (j, g) in fs.iter().enumerate() {
                     if j == i {
@@ -617,7 +752,7 @@ pub fn eliminate_all(
     deadline: Option<Deadline>,
     params: bool,
 ) -> Result<(Rat, Vec<Step>, Vec<Fact>), NormError> {
-    let first = eliminate_with(target, facts, is_unknown, signs, deadline, false)?;
+    let (first, left) = eliminate_left(target, facts, is_unknown, signs, deadline, false)?;
     let rest = |steps: &[Step]| -> Vec<Fact> {
         facts
             .iter()
@@ -632,7 +767,6 @@ pub fn eliminate_all(
             })
             .collect()
     };
-    let left = rest(&first.steps);
     if !params {
         return Ok((first.target, first.steps, left));
     }
@@ -641,7 +775,7 @@ pub fn eliminate_all(
         .filter(|f| !f.value.atoms().iter().any(|a| is_unknown(*a)))
         .cloned()
         .collect();
-    let any_symbol = |a: AtomId| atom::sym_name(a).is_some();
+    let any_symbol = |a: AtomId| atom::sym_str(a).is_some();
     let second = eliminate_with(&first.target, &params, &any_symbol, signs, deadline, true)?;
     let mut steps = first.steps;
     steps.extend(second.steps);

@@ -12,8 +12,8 @@
 //! through the one checker entry. Anything else needs context, never fails: the step
 //! may hold for the body the notes mean.
 
-use super::{free, ChainReport, Verdict};
-use crate::check::{check_source, MemoryResolver, Options};
+use super::{free, ChainReport, Checked, Verdict};
+use crate::check::Options;
 use crate::diag::Diagnostic;
 use crate::syntax::ast::{BinOp, Chain, Expr, ExprKind, Func, Span};
 use crate::syntax::print::source;
@@ -95,7 +95,7 @@ fn linear(e: &Expr) -> Option<Linear> {
 }
 
 /// Whether the step `a = b` holds for every mass distribution.
-fn holds_for_every_body(a: &Expr, b: &Expr, opts: &Options) -> bool {
+fn holds_for_every_body(a: &Expr, b: &Expr, (opts, cache): (&Options, &Checked)) -> bool {
     let (Some(l), Some(r)) = (linear(a), linear(b)) else {
         return false;
     };
@@ -131,7 +131,7 @@ fn holds_for_every_body(a: &Expr, b: &Expr, opts: &Options) -> bool {
         Linear::sum(&l.rest),
         Linear::sum(&r.rest)
     ));
-    let checked = check_source("step", &deriv, opts, &MemoryResolver::new());
+    let checked = cache.report("step", &deriv, opts);
     checked.claims.len() == 2 && checked.ok()
 }
 
@@ -140,7 +140,10 @@ fn holds_for_every_body(a: &Expr, b: &Expr, opts: &Options) -> bool {
 /// to the first expression free of such integrals holds for every body (linearity) or
 /// needs context, and runs of each are reported as chains; the steps from that
 /// expression on are a chain of their own, checked as any other.
-pub(super) fn over_prose_mass(chain: Chain, opts: &Options) -> (Vec<ChainReport>, Option<Chain>) {
+pub(super) fn over_prose_mass(
+    chain: Chain,
+    opts: (&Options, &Checked),
+) -> (Vec<ChainReport>, Option<Chain>) {
     let exprs: Vec<&Expr> = std::iter::once(&chain.first)
         .chain(chain.links.iter().map(|l| &l.rhs))
         .collect();

@@ -13,7 +13,8 @@ use crate::syntax::ast::{Chain, Expr, ExprKind, Func, Span};
 use crate::syntax::latex::{parse_latex_chain, parse_latex_links};
 use crate::syntax::ParseOptions;
 pub use extract::{pieces, DocKind, Piece};
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
+use std::sync::{Arc, Mutex};
 
 /// The verdict on one chain.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -71,6 +72,8 @@ struct Placed {
     later: Vec<Later>,
     /// Where the whole chain is in the document.
     span: Span,
+    /// Where the first link ends, and where its right side starts.
+    first_link: Span,
     /// Whether the first link states a relation for a lone symbol (a definition or a
     /// law the notes take from elsewhere).
     states: bool,
@@ -96,6 +99,56 @@ enum Item {
     Chain(Chain),
 }
 
+/// The reports of the derivations checked so far in one run, by their text, and
+/// whether each statement generated so far reads. Notes repeat themselves (the same
+/// worked example under several headings, boilerplate relations): a derivation
+/// identical to one already checked, with the same options, has the same report, so it
+/// is checked once (and a statement read once). The cache lives for one call of
+/// [`lint`].
+#[derive(Default)]
+pub(super) struct Checked {
+    reports: Mutex<Reports>,
+    parsed: Mutex<HashMap<String, bool>>,
+}
+
+/// Reports by the name they were checked under, then by the derivation's text.
+type Reports = HashMap<String, HashMap<String, Arc<FileReport>>>;
+
+impl Checked {
+    /// The report of `deriv` checked as `name`, checked now unless it was before.
+    pub(super) fn report(&self, name: &str, deriv: &str, opts: &Options) -> Arc<FileReport> {
+        let known = lock(&self.reports)
+            .get(name)
+            .and_then(|m| m.get(deriv))
+            .cloned();
+        if let Some(r) = known {
+            return r;
+        }
+        let r = Arc::new(check_source(name, deriv, opts, &MemoryResolver::new()));
+        lock(&self.reports)
+            .entry(name.to_string())
+            .or_default()
+            .insert(deriv.to_string(), r.clone());
+        r
+    }
+
+    /// Whether a generated statement reads on its own (one bad statement must not stop
+    /// the rest of the document from being checked).
+    fn parses(&self, stmt: &str) -> bool {
+        let known = lock(&self.parsed).get(stmt).copied();
+        if let Some(ok) = known {
+            return ok;
+        }
+        let ok = crate::syntax::parse_file(stmt, &ParseOptions::default()).is_ok();
+        lock(&self.parsed).insert(stmt.to_string(), ok);
+        ok
+    }
+}
+
+fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|e| e.into_inner())
+}
+
 /// The derivation made from a scope, as it is written.
 struct Build<'a> {
     /// The derivation.
@@ -112,6 +165,8 @@ struct Build<'a> {
     time: &'a HashSet<String>,
     /// Names the linter declares with `unknowns`: the facts determine them.
     solve: &'a HashSet<String>,
+    /// What this run has read and checked.
+    cache: &'a Checked,
 }
 
 impl Scope {
@@ -128,8 +183,8 @@ impl Scope {
     fn build<'a>(
         &self,
         doc: &str,
-        time: &'a HashSet<String>,
-        solve: &'a HashSet<String>,
+        (time, solve): (&'a HashSet<String>, &'a HashSet<String>),
+        cache: &'a Checked,
     ) -> Build<'a> {
         let mut b = Build {
             deriv: self.directives.clone(),
@@ -139,6 +194,7 @@ impl Scope {
             seen: HashSet::new(),
             time,
             solve,
+            cache,
         };
         for item in &self.items {
             match item {
@@ -162,7 +218,7 @@ impl Scope {
     fn close(
         &self,
         (name, doc): (&str, &LineIndex<'_>),
-        opts: &Options,
+        (opts, cache): (&Options, &Checked),
         out: &mut Vec<ChainReport>,
     ) {
         let mut time = HashSet::new();
@@ -183,11 +239,11 @@ impl Scope {
         }
         let mut solve = HashSet::new();
         for round in 0..3 {
-            let b = self.build(doc.text(), &time, &solve);
+            let b = self.build(doc.text(), (&time, &solve), cache);
             if b.placed.is_empty() {
                 return;
             }
-            let checked = check_source(name, &b.deriv, opts, &MemoryResolver::new());
+            let checked = cache.report(name, &b.deriv, opts);
             let more: Vec<String> = checked
                 .diagnostics
                 .iter()
@@ -200,9 +256,15 @@ impl Scope {
                     for d in &mut report.diagnostics {
                         d.message = document_lines(&d.message, &b.deriv, &b.placed, doc);
                     }
-                    let tail = (report.verdict == Verdict::NeedsContext)
-                        .then(|| verified_tail(&checked, p))
-                        .flatten();
+                    let needs = report.verdict == Verdict::NeedsContext;
+                    let tail = needs.then(|| verified_tail(&checked, p)).flatten();
+                    // A verified head is reported on its own; the rest of the chain,
+                    // from the head's last expression, is what needs context.
+                    if let Some((head, from)) = needs.then(|| verified_head(&checked, p)).flatten()
+                    {
+                        report.span = Span::new(from, report.span.end);
+                        out.push(head);
+                    }
                     out.push(report);
                     out.extend(tail);
                 }
@@ -252,6 +314,7 @@ pub fn lint(name: &str, doc: &str, kind: DocKind, opts: &Options) -> LintReport 
     let popts = ParseOptions {
         max_depth: opts.parse.max_depth,
     };
+    let cache = Checked::default();
     for piece in pieces(doc, kind) {
         match piece {
             Piece::Heading => {
@@ -270,7 +333,7 @@ pub fn lint(name: &str, doc: &str, kind: DocKind, opts: &Options) -> LintReport 
                 last = None;
             }
             Piece::Directive(text) => {
-                if !parses(&text) {
+                if !cache.parses(&text) {
                     continue;
                 }
                 let words: Vec<String> = text
@@ -301,7 +364,7 @@ pub fn lint(name: &str, doc: &str, kind: DocKind, opts: &Options) -> LintReport 
                                 let (prose, rest) = if body {
                                     (Vec::new(), Some(chain))
                                 } else {
-                                    mass::over_prose_mass(chain, opts)
+                                    mass::over_prose_mass(chain, (opts, &cache))
                                 };
                                 report.chains.extend(prose);
                                 scope.items.extend(rest.map(Item::Chain));
@@ -313,10 +376,11 @@ pub fn lint(name: &str, doc: &str, kind: DocKind, opts: &Options) -> LintReport 
         }
     }
     scopes.push(scope);
-    // Scopes share nothing: they are checked in parallel.
+    // Scopes share nothing but the reports of identical derivations: they are checked
+    // in parallel.
     let checked = crate::files::parallel(&scopes, |s| {
         let mut out = Vec::new();
-        s.close((name, &lines), opts, &mut out);
+        s.close((name, &lines), (opts, &cache), &mut out);
         out
     });
     report.chains.extend(checked.into_iter().flatten());
@@ -384,6 +448,7 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         seen,
         time,
         solve,
+        cache,
     } = b;
     let mut names = Vec::new();
     free(&chain.first, &mut Vec::new(), &mut names);
@@ -420,7 +485,7 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
             stmt.push(' ');
         }
         stmt.push_str("$$\n");
-        if !parses(&stmt) {
+        if !cache.parses(&stmt) {
             return None;
         }
         let mut part = Vec::new();
@@ -450,7 +515,7 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
                 text(chain.first.span),
                 text(link0.rhs.span)
             );
-            if !parses(&stmt) {
+            if !cache.parses(&stmt) {
                 declared.remove(s);
                 return;
             }
@@ -491,15 +556,10 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         stated,
         later,
         span: chain_span,
+        first_link: Span::new(link0.rhs.span.start, link0.span.end),
         states,
         firm,
     });
-}
-
-/// Whether a generated statement reads on its own (one bad statement must not stop
-/// the rest of the document from being checked).
-fn parses(stmt: &str) -> bool {
-    crate::syntax::parse_file(stmt, &ParseOptions::default()).is_ok()
 }
 
 /// Declares the chain's new symbols: `time` for those the scope writes with a
@@ -655,6 +715,13 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
         if holds(&s) && (first_ok || p.states) {
             return report(Verdict::Verified, Vec::new());
         }
+        // A later link that brings in a symbol nothing before it defines (`= k_G^2`)
+        // needs that definition, whatever the facts it was tried with relate.
+        for x in &mut d {
+            if later_link(p, x).is_some_and(|l| !l.fresh.is_empty()) {
+                x.message = later_needs(p, x);
+            }
+        }
         first_diags.extend(d);
     } else if first_ok || (p.first.is_none() && p.states) {
         return report(Verdict::Verified, Vec::new());
@@ -693,6 +760,35 @@ fn verified_tail(checked: &FileReport, p: &Placed) -> Option<ChainReport> {
         verdict: Verdict::Verified,
         diagnostics: Vec::new(),
     })
+}
+
+/// The links of a chain that needs context, from the first up to the first that does
+/// not hold, when the first is a step that holds (not only a relation the notes state):
+/// a chain of their own, and where the rest of the chain starts (`a b = I_G/m = k_G^2`:
+/// the first link follows from the relation before it; the second brings in `k_G`).
+/// Only links that hold with nothing assumed count: a head verified assuming a divisor
+/// nonzero (`dm = m dA/A`, read as products, needs `A != 0`) stays with the chain.
+fn verified_head(checked: &FileReport, p: &Placed) -> Option<(ChainReport, usize)> {
+    let settled = |s: &Status| matches!(s, Status::Verified { side_conditions, .. } if side_conditions.is_empty());
+    let (first, _) = part_outcome(checked, p.first.as_ref()?, p.span);
+    if first.is_empty() || !first.iter().all(settled) {
+        return None;
+    }
+    let (statuses, _) = part_outcome(checked, p.rest.as_ref()?, p.span);
+    if statuses.len() != p.later.len() {
+        return None;
+    }
+    let k = statuses.iter().position(|s| !settled(s))?;
+    let (end, from) = match k.checked_sub(1) {
+        None => (p.first_link.end, p.first_link.start),
+        Some(i) => (p.later.get(i)?.span.end, p.later.get(i)?.rhs),
+    };
+    let head = ChainReport {
+        span: Span::new(p.span.start, end),
+        verdict: Verdict::Verified,
+        diagnostics: Vec::new(),
+    };
+    Some((head, from))
 }
 
 /// The later link a diagnostic is about.

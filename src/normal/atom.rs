@@ -8,7 +8,7 @@ use super::poly::Poly;
 use super::rat::Rat;
 use std::cmp::Ordering;
 use std::collections::HashMap;
-use std::sync::{Arc, LazyLock, RwLock};
+use std::sync::{Arc, LazyLock, OnceLock, RwLock};
 
 /// The interned id of an atom. Ids order monomials inside one process only;
 /// printers order by [`cmp_atoms`], which depends on content alone.
@@ -65,13 +65,39 @@ struct Entry {
     depth: u32,
 }
 
+/// The ids of the atoms interned so far; the lock also serialises interning.
 #[derive(Default)]
 struct Table {
     map: HashMap<Arc<Atom>, AtomId>,
-    entries: Vec<Entry>,
+    len: u32,
 }
 
 static TABLE: LazyLock<RwLock<Table>> = LazyLock::new(|| RwLock::new(Table::default()));
+
+/// The entries by id, read without a lock (lookups by id are the hot path of every
+/// computation, on every thread at once). Entries are written once, while interning
+/// holds the table's write lock, and never change or move: segment `k` holds the
+/// `SEGMENT << k` ids from `SEGMENT·(2^k − 1)` on, allocated when its first id is.
+static ENTRIES: [OnceLock<Box<[OnceLock<Entry>]>>; SEGMENTS] =
+    [const { OnceLock::new() }; SEGMENTS];
+
+/// Ids in the first segment.
+const SEGMENT: usize = 64;
+/// Segments: enough for every `u32` id.
+const SEGMENTS: usize = 27;
+
+/// The segment and the place in it of `id`.
+fn slot(id: AtomId) -> (usize, usize) {
+    let j = id as usize / SEGMENT + 1;
+    let k = (usize::BITS - 1 - j.leading_zeros()) as usize;
+    (k, id as usize - SEGMENT * ((1 << k) - 1))
+}
+
+/// The entry of `id`, if it was interned.
+fn entry(id: AtomId) -> Option<&'static Entry> {
+    let (k, i) = slot(id);
+    ENTRIES.get(k)?.get()?.get(i)?.get()
+}
 
 fn rule_of(a: &Atom) -> Rule {
     match a {
@@ -82,11 +108,11 @@ fn rule_of(a: &Atom) -> Rule {
     }
 }
 
-fn depth_of(t: &Table, a: &Atom) -> u32 {
+fn depth_of(a: &Atom) -> u32 {
     let of_poly = |p: &Poly| {
         p.atoms()
             .iter()
-            .filter_map(|id| t.entries.get(*id as usize).map(|e| e.depth))
+            .filter_map(|id| entry(*id).map(|e| e.depth))
             .max()
             .unwrap_or(0)
     };
@@ -112,16 +138,24 @@ pub fn intern(a: Atom) -> AtomId {
     if let Some(id) = t.map.get(&a) {
         return *id;
     }
-    let id = t.entries.len() as AtomId;
-    let depth = depth_of(&t, &a);
+    let id = t.len;
+    let depth = depth_of(&a);
     let rule = rule_of(&a);
     let atom = Arc::new(a);
-    t.entries.push(Entry {
-        atom: atom.clone(),
-        rule,
-        depth,
-    });
+    // Every `u32` id has a slot (memory runs out long before the ids do).
+    let (k, i) = slot(id);
+    if let Some(segment) = ENTRIES.get(k) {
+        let segment = segment.get_or_init(|| (0..SEGMENT << k).map(|_| OnceLock::new()).collect());
+        if let Some(e) = segment.get(i) {
+            let _ = e.set(Entry {
+                atom: atom.clone(),
+                rule,
+                depth,
+            });
+        }
+    }
     t.map.insert(atom, id);
+    t.len += 1;
     id
 }
 
@@ -146,33 +180,46 @@ pub fn at(name: &str, u: &Rat) -> AtomId {
 /// The atom with id `id`. Ids only come from [`intern`], so the lookup cannot fail;
 /// an unknown id (a bug) reads as the symbol `?`.
 pub fn get(id: AtomId) -> Arc<Atom> {
-    let t = TABLE.read().unwrap_or_else(|e| e.into_inner());
-    match t.entries.get(id as usize) {
+    match entry(id) {
         Some(e) => e.atom.clone(),
         None => Arc::new(Atom::Sym("?".into())),
     }
 }
 
-/// The reduction rule of each atom in `ids` (one lock for all).
+/// The reduction rule of each atom in `ids`.
 pub fn rules(ids: &[AtomId]) -> Vec<Rule> {
-    let t = TABLE.read().unwrap_or_else(|e| e.into_inner());
     ids.iter()
-        .map(|id| t.entries.get(*id as usize).map_or(Rule::Free, |e| e.rule))
+        .map(|id| entry(*id).map_or(Rule::Free, |e| e.rule))
         .collect()
 }
 
 /// The nesting depth of an atom (symbols 1).
 pub fn depth(id: AtomId) -> u32 {
-    let t = TABLE.read().unwrap_or_else(|e| e.into_inner());
-    t.entries.get(id as usize).map_or(0, |e| e.depth)
+    entry(id).map_or(0, |e| e.depth)
 }
 
 /// The symbol's name, if `id` is a symbol.
 pub fn sym_name(id: AtomId) -> Option<String> {
-    match &*get(id) {
-        Atom::Sym(s) => Some(s.clone()),
+    sym_str(id).map(str::to_string)
+}
+
+/// The symbol's name, if `id` is a symbol, without a copy.
+pub fn sym_str(id: AtomId) -> Option<&'static str> {
+    match entry(id).map(|e| &*e.atom) {
+        Some(Atom::Sym(s)) => Some(s),
         _ => None,
     }
+}
+
+/// The atom with id `id`, borrowed (an unknown id, a bug, reads as the symbol `?`).
+fn atom_ref(id: AtomId) -> &'static Atom {
+    static UNKNOWN: LazyLock<Atom> = LazyLock::new(|| Atom::Sym("?".into()));
+    entry(id).map_or(&*UNKNOWN, |e| &*e.atom)
+}
+
+/// Whether `id` is π.
+pub fn is_pi(id: AtomId) -> bool {
+    matches!(entry(id).map(|e| &*e.atom), Some(Atom::Pi))
 }
 
 fn kind_rank(a: &Atom) -> u8 {
@@ -198,18 +245,50 @@ pub fn cmp_atoms(a: AtomId, b: AtomId) -> Ordering {
     if a == b {
         return Ordering::Equal;
     }
-    let (x, y) = (get(a), get(b));
-    kind_rank(&x)
-        .cmp(&kind_rank(&y))
-        .then_with(|| match (&*x, &*y) {
-            (Atom::Sym(p), Atom::Sym(q)) => p
-                .to_lowercase()
-                .cmp(&q.to_lowercase())
-                .then_with(|| p.cmp(q)),
-            (Atom::Moment(b1, e1), Atom::Moment(b2, e2)) => b1.cmp(b2).then_with(|| e1.cmp(e2)),
-            _ => {
-                let (p, q) = (super::print::atom_plain(&x), super::print::atom_plain(&y));
-                p.len().cmp(&q.len()).then_with(|| p.cmp(&q))
+    let (x, y) = (atom_ref(a), atom_ref(b));
+    kind_rank(x).cmp(&kind_rank(y)).then_with(|| match (x, y) {
+        (Atom::Sym(p), Atom::Sym(q)) => p
+            .to_lowercase()
+            .cmp(&q.to_lowercase())
+            .then_with(|| p.cmp(q)),
+        (Atom::Moment(b1, e1), Atom::Moment(b2, e2)) => b1.cmp(b2).then_with(|| e1.cmp(e2)),
+        _ => {
+            let (p, q) = (super::print::atom_plain(x), super::print::atom_plain(y));
+            p.len().cmp(&q.len()).then_with(|| p.cmp(&q))
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slots_number_every_id_once_in_order() {
+        let mut next = (0, 0);
+        for id in 0..100_000u32 {
+            let (k, i) = slot(id);
+            assert!(i < SEGMENT << k, "{id}");
+            if (k, i) != next {
+                assert_eq!((k, i, next.1), (next.0 + 1, 0, SEGMENT << next.0), "{id}");
             }
-        })
+            next = (k, i + 1);
+        }
+        assert!(slot(u32::MAX).0 < SEGMENTS);
+    }
+
+    #[test]
+    fn interned_atoms_read_back_from_every_thread() {
+        let ids: Vec<AtomId> = (0..300).map(|k| sym(&format!("slot_test_{k}"))).collect();
+        std::thread::scope(|s| {
+            for _ in 0..2 {
+                s.spawn(|| {
+                    for (k, id) in ids.iter().enumerate() {
+                        assert_eq!(sym_name(*id), Some(format!("slot_test_{k}")));
+                        assert_eq!(depth(*id), 1);
+                    }
+                });
+            }
+        });
+    }
 }

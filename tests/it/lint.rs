@@ -86,6 +86,12 @@ fn the_handout_as_it_is_never_fails_and_verifies_what_holds_on_its_own() {
         report.contains("handout.md:73:3: needs context: this step brings in r, R"),
         "{report}"
     );
+    // `a b = I_G/m` is the zero-acceleration condition divided by F/m (F = m y_G''):
+    // nothing says F is not zero, and the report says so.
+    assert!(
+        report.contains("handout.md:216:3: needs context: not verified: this step is line 212 divided by m y_G'', so it follows only where m y_G'' != 0"),
+        "{report}"
+    );
     insta::assert_snapshot!(report);
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -97,8 +103,9 @@ fn a_missing_document_is_bad_input() {
     assert!(err.contains("no_such_notes.md"), "{err}");
 }
 
-/// The handout with its symbols declared in comments, and a comment heading where the
-/// notes change scenario without one (frictionless, then slipping).
+/// The handout with its symbols declared in comments (the blow of the centre of
+/// percussion nonzero too), and a comment heading where the notes change scenario
+/// without one (frictionless, then slipping).
 fn declared_handout(text: &str) -> String {
     let mut out = String::new();
     for line in text.lines() {
@@ -113,6 +120,9 @@ fn declared_handout(text: &str) -> String {
         if line.starts_with("Example 5.1") {
             out.push_str("\n<!-- rigor: symbols m g R I_G > 0 -->\n");
             out.push_str("<!-- rigor: symbols 0 < beta < pi/2 -->\n");
+        }
+        if line.starts_with("5.3 Centre of Percussion") {
+            out.push_str("\n<!-- rigor: symbols F != 0 -->\n");
         }
     }
     out
@@ -151,7 +161,47 @@ fn the_handout_with_its_symbols_declared_verifies_the_rolling_and_sliding_accele
         let at = format!("handout.md:{}:3: verified", line_of(needle));
         assert!(out.contains(&at), "{at}\n{out}");
     }
+    // The centre of percussion: `a b = I_G/m` verified from the condition before it,
+    // `= k_G^2` needs the definition of k_G.
+    let ab = line_of("$$a b = \\frac{I_G}{m} = k_G^2$$");
+    for at in [
+        format!("handout.md:{ab}:3: verified"),
+        format!("handout.md:{ab}:9: needs context: this step brings in k_G"),
+    ] {
+        assert!(out.contains(&at), "{at}\n{out}");
+    }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_centre_of_percussion_follows_only_where_the_blow_is_declared_nonzero() {
+    let (out, err, code) = lint(&["tests/lint/percussion_notes.md"]);
+    assert_eq!(code, 0, "{out}{err}");
+    // F = m y_G'' with no sign: dividing the condition by it is not assumed, and the
+    // report names what is missing.
+    assert!(
+        out.contains("percussion_notes.md:17:3: needs context: not verified: this step is line 15 divided by y_G'', so it follows only where y_G'' != 0"),
+        "{out}"
+    );
+    // `F != 0` declared: `a b = I_G/m` follows, with nothing assumed; `= k_G^2` brings
+    // in a symbol the notes define in prose.
+    assert!(out.contains("percussion_notes.md:25:3: verified"), "{out}");
+    assert!(
+        out.contains("percussion_notes.md:25:9: needs context: this step brings in k_G"),
+        "{out}"
+    );
+    // The same condition never verifies a wrong result.
+    for at in ["31:3", "37:3"] {
+        assert!(
+            out.contains(&format!("percussion_notes.md:{at}: needs context")),
+            "{at}\n{out}"
+        );
+    }
+    assert!(
+        out.ends_with("chains: 11, verified: 2, failed: 0, needs context: 9\n"),
+        "{out}"
+    );
+    insta::assert_snapshot!(format!("{out}\n{err}"));
 }
 
 #[test]
