@@ -36,6 +36,9 @@ pub struct ChainReport {
     pub verdict: Verdict,
     /// For a failure or a need of context: why (diagnostics with document spans).
     pub diagnostics: Vec<Diagnostic>,
+    /// For a verified chain: what its links assume that the declared signs do not show
+    /// (`b F m != 0`), each once.
+    pub assuming: Vec<String>,
 }
 
 /// Everything found in one document.
@@ -690,10 +693,21 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
             span: p.span,
             verdict: Verdict::Failed,
             diagnostics: first_diags,
+            assuming: Vec::new(),
         };
+    }
+    // A verified chain says what its links assume (a division the signs do not show safe).
+    let mut assuming = Vec::new();
+    for part in [&p.first, &p.rest].into_iter().flatten() {
+        assuming.extend(conditions(&part_outcome(checked, part, p.span).0));
     }
     let report = |verdict, diagnostics| ChainReport {
         span: p.span,
+        assuming: if verdict == Verdict::Verified {
+            once(assuming.clone())
+        } else {
+            Vec::new()
+        },
         verdict,
         diagnostics,
     };
@@ -759,7 +773,27 @@ fn verified_tail(checked: &FileReport, p: &Placed) -> Option<ChainReport> {
         span: Span::new(from, p.span.end),
         verdict: Verdict::Verified,
         diagnostics: Vec::new(),
+        assuming: once(conditions(statuses.get(j + 1..).unwrap_or_default())),
     })
+}
+
+/// The side conditions verified links assume.
+fn conditions(statuses: &[Status]) -> Vec<String> {
+    statuses
+        .iter()
+        .flat_map(|s| match s {
+            Status::Verified {
+                side_conditions, ..
+            } => side_conditions.clone(),
+            _ => Vec::new(),
+        })
+        .collect()
+}
+
+/// Each string once, in first-seen order.
+fn once(v: Vec<String>) -> Vec<String> {
+    let mut seen = HashSet::new();
+    v.into_iter().filter(|c| seen.insert(c.clone())).collect()
 }
 
 /// The links of a chain that needs context, from the first up to the first that does
@@ -787,6 +821,7 @@ fn verified_head(checked: &FileReport, p: &Placed) -> Option<(ChainReport, usize
         span: Span::new(p.span.start, end),
         verdict: Verdict::Verified,
         diagnostics: Vec::new(),
+        assuming: Vec::new(),
     };
     Some((head, from))
 }
@@ -882,6 +917,7 @@ fn read(
         span,
         verdict: Verdict::NeedsContext,
         diagnostics: vec![Diagnostic::error("E0001", message, span, "")],
+        assuming: Vec::new(),
     };
     let after = e.span.end.saturating_sub(at);
     match extract::equals_after(rel, after) {

@@ -24,7 +24,15 @@ pub fn human(r: &LintReport) -> (String, String) {
             format!(": {}", m.strip_prefix("needs context: ").unwrap_or(m))
         });
         match c.verdict {
-            Verdict::Verified => out.push_str(&format!("{}:{line}:{col}: verified\n", r.path)),
+            Verdict::Verified if c.assuming.is_empty() => {
+                out.push_str(&format!("{}:{line}:{col}: verified\n", r.path))
+            }
+            // What the signs do not show is said, as `check` says it.
+            Verdict::Verified => out.push_str(&format!(
+                "{}:{line}:{col}: verified, assuming {}\n",
+                r.path,
+                c.assuming.join(" and ")
+            )),
             Verdict::NeedsContext => {
                 out.push_str(&format!("{}:{line}:{col}: needs context{why}\n", r.path))
             }
@@ -68,7 +76,8 @@ pub fn json(r: &LintReport) -> String {
                            "line": at.map(|a| a.0), "column": at.map(|a| a.1)})
                 })
                 .collect();
-            json!({"line": line, "column": column, "verdict": word(&c.verdict), "diagnostics": diags})
+            json!({"line": line, "column": column, "verdict": word(&c.verdict),
+                   "assuming": c.assuming, "diagnostics": diags})
         })
         .collect();
     json!({

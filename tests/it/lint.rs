@@ -249,3 +249,38 @@ fn a_slip_in_declared_symbols_is_not_taken_as_a_fact_for_what_follows() {
     assert!(out.contains("slip_then_more.md:5:3: FAILED"), "{out}");
     assert!(out.contains("slip_then_more.md:9:3: FAILED"), "{out}");
 }
+
+#[test]
+fn a_verified_chain_says_what_it_assumes_and_declared_signs_remove_it() {
+    // `I = M R^2/2` divided by R^2: verified where R != 0, which nothing declares.
+    let dir = std::env::temp_dir().join(format!("rigor-lint-assuming-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let bare = dir.join("bare.md");
+    let signed = dir.join("signed.md");
+    let eq = "$$\\frac{2 I}{R^2} = \\frac{2}{R^2} \\cdot \\frac{M R^2}{2} = M$$\n";
+    std::fs::write(
+        &bare,
+        format!(
+            "# Disk\n\n<!-- rigor: symbols I M R -->\n<!-- rigor: given I = M R^2/2 -->\n\n{eq}"
+        ),
+    )
+    .expect("write");
+    std::fs::write(&signed, format!("# Disk\n\n<!-- rigor: symbols I M R > 0 -->\n<!-- rigor: given I = M R^2/2 -->\n\n{eq}")).expect("write");
+    let (out, err, code) = lint(&[bare.to_str().unwrap_or_default(), "--format", "json"]);
+    assert_eq!(code, 0, "{out}{err}");
+    let v: serde_json::Value =
+        serde_json::from_str(out.lines().next().unwrap_or("{}")).expect("json");
+    let chain = &v["chains"][0];
+    assert_eq!(chain["verdict"], "verified", "{out}");
+    assert!(
+        chain["assuming"].as_array().is_some_and(|a| !a.is_empty()),
+        "the division by R^2 is assumed safe and said: {out}"
+    );
+    let (out, err, code) = lint(&[signed.to_str().unwrap_or_default()]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        out.contains(":6:3: verified\n"),
+        "with R > 0 nothing is assumed: {out}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
