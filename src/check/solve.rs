@@ -193,26 +193,8 @@ fn eliminate_left(
             timed_out = true;
             break;
         }
-        // Content order, not id order: the same file is checked the same way in every run.
-        // An unknown inside another atom (`sqrt(I_O/m)`) counts: substituting its value
-        // rebuilds that atom.
         let target_atoms = target.atoms();
-        let mut unknowns: Vec<AtomId> = target_atoms
-            .iter()
-            .copied()
-            .filter(|a| is_unknown(*a))
-            .collect();
-        for f in &facts {
-            for a in f.value.atoms() {
-                if is_unknown(a)
-                    && !unknowns.contains(&a)
-                    && target_atoms.iter().any(|t| atom_depends_on(*t, a))
-                {
-                    unknowns.push(a);
-                }
-            }
-        }
-        unknowns.sort_by(|a, b| atom::cmp_atoms(*a, *b));
+        let unknowns = unknowns_of_target(&target_atoms, &facts, is_unknown);
         if unknowns.is_empty() {
             break;
         }
@@ -255,33 +237,15 @@ fn eliminate_left(
         let fact = facts.remove(i);
         memo.remove(i);
         target = subst_atom(&target, u, &sol.value, signs)?;
-        let mut kept = Vec::with_capacity(facts.len());
-        let mut kept_memo = Vec::with_capacity(facts.len());
-        for (f, m) in facts.into_iter().zip(std::mem::take(&mut memo)) {
-            let v = match subst_atom(&f.value, u, &sol.value, signs) {
-                Ok(v) => v,
-                // The substitution makes this fact undefined: it cannot be used further.
-                Err(NormError::DivisionByZero) => continue,
-                Err(e) => return Err(e),
-            };
-            if v.is_zero() {
-                continue;
-            }
-            if contradiction.is_none()
-                && !conditional
-                && !v.atoms().iter().any(|a| is_unknown(*a))
-                && signs.rat(&v).is_nonzero()
-            {
-                contradiction = Some(f.name.clone());
-            }
-            kept_memo.push(if v == f.value { m } else { Memo::new() });
-            kept.push(Fact {
-                value: v,
-                name: f.name,
-            });
-        }
-        facts = kept;
-        memo = kept_memo;
+        let found = substitute_in_facts(
+            (facts, std::mem::take(&mut memo)),
+            (u, &sol.value),
+            is_unknown,
+            signs,
+            !conditional && contradiction.is_none(),
+        )?;
+        (facts, memo) = (found.0, found.1);
+        contradiction = contradiction.or(found.2);
         steps.push(Step {
             unknown: u,
             value: sol.value,
@@ -305,6 +269,75 @@ fn eliminate_left(
         multiple_where: None,
     };
     Ok((e, facts))
+}
+
+/// The unknowns to eliminate from a target, in content order (not id order: the same
+/// file is checked the same way in every run). An unknown inside another atom of the
+/// target (`sqrt(I_O/m)`) counts: substituting its value rebuilds that atom.
+fn unknowns_of_target(
+    target_atoms: &[AtomId],
+    facts: &[Fact],
+    is_unknown: &dyn Fn(AtomId) -> bool,
+) -> Vec<AtomId> {
+    let mut unknowns: Vec<AtomId> = target_atoms
+        .iter()
+        .copied()
+        .filter(|a| is_unknown(*a))
+        .collect();
+    for f in facts {
+        for a in f.value.atoms() {
+            if is_unknown(a)
+                && !unknowns.contains(&a)
+                && target_atoms.iter().any(|t| atom_depends_on(*t, a))
+            {
+                unknowns.push(a);
+            }
+        }
+    }
+    unknowns.sort_by(|a, b| atom::cmp_atoms(*a, *b));
+    unknowns
+}
+
+/// The facts kept after a substitution, their memos, and a contradiction found.
+type Substituted = (Vec<Fact>, Vec<Memo>, Option<String>);
+
+/// The remaining facts (and their memos) with `u` replaced by `value`: facts that become
+/// zero or undefined are dropped. With `watch`, the first fact that becomes a nonzero
+/// quantity free of unknowns is returned as a contradiction.
+fn substitute_in_facts(
+    (facts, memo): (Vec<Fact>, Vec<Memo>),
+    (u, value): (AtomId, &Rat),
+    is_unknown: &dyn Fn(AtomId) -> bool,
+    signs: &Assumptions,
+    watch: bool,
+) -> Result<Substituted, NormError> {
+    let mut contradiction = None;
+    let mut kept = Vec::with_capacity(facts.len());
+    let mut kept_memo = Vec::with_capacity(facts.len());
+    for (f, m) in facts.into_iter().zip(memo) {
+        let v = match subst_atom(&f.value, u, value, signs) {
+            Ok(v) => v,
+            // The substitution makes this fact undefined: it cannot be used further.
+            Err(NormError::DivisionByZero) => continue,
+            Err(e) => return Err(e),
+        };
+        if v.is_zero() {
+            continue;
+        }
+        if watch
+            && contradiction.is_none()
+            && !v.atoms().iter().any(|a| is_unknown(*a))
+            && signs.rat(&v).is_nonzero()
+        {
+            contradiction = Some(f.name.clone());
+        }
+        kept_memo.push(if v == f.value { m } else { Memo::new() });
+        kept.push(Fact {
+            value: v,
+            name: f.name,
+        });
+    }
+    Ok((kept, kept_memo, contradiction))
 }
 
 /// Whether `target` is `r · fact` for an `r` whose denominator the signs make nonzero.

@@ -453,19 +453,10 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         solve,
         cache,
     } = b;
-    let mut names = Vec::new();
-    free(&chain.first, &mut Vec::new(), &mut names);
-    if let Some(l) = chain.links.first() {
-        free(&l.rhs, &mut Vec::new(), &mut names);
-    }
+    let mut names = first_link_names(chain);
     let is_known = |n: &String| known.contains(n.trim_end_matches('\'')) || n == "t";
     let firm = names.iter().all(is_known);
-    // A relation between positions of two or more moving things (`x = -theta R`) is a
-    // constraint: it holds at every instant, so its derivatives do too. Anything else
-    // stated (a law with accelerations, a value at release) holds at the instant only.
-    let bases: HashSet<&str> = names.iter().map(|n| n.trim_end_matches('\'')).collect();
-    let constraint = !names.iter().any(|n| n.ends_with('\''))
-        && bases.iter().filter(|n| time.contains(**n)).count() >= 2;
+    let constraint = is_constraint(&names, time);
     let later = later_links(chain, &mut names, seen, &is_known);
     seen.extend(names.iter().map(|n| n.trim_end_matches('\'').to_string()));
     let defines = match &chain.first.kind {
@@ -563,6 +554,25 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         states,
         firm,
     });
+}
+
+/// The free names of a chain's first link.
+fn first_link_names(chain: &Chain) -> Vec<String> {
+    let mut names = Vec::new();
+    free(&chain.first, &mut Vec::new(), &mut names);
+    if let Some(l) = chain.links.first() {
+        free(&l.rhs, &mut Vec::new(), &mut names);
+    }
+    names
+}
+
+/// A relation between positions of two or more moving things (`x = -theta R`) is a
+/// constraint: it holds at every instant, so its derivatives do too. Anything else
+/// stated (a law with accelerations, a value at release) holds at the instant only.
+fn is_constraint(names: &[String], time: &HashSet<String>) -> bool {
+    let bases: HashSet<&str> = names.iter().map(|n| n.trim_end_matches('\'')).collect();
+    !names.iter().any(|n| n.ends_with('\''))
+        && bases.iter().filter(|n| time.contains(**n)).count() >= 2
 }
 
 /// Declares the chain's new symbols: `time` for those the scope writes with a
