@@ -691,13 +691,15 @@ fn part_outcome(checked: &FileReport, part: &Part, whole: Span) -> (Vec<Status>,
 fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
     let holds = |s: &[Status]| !s.is_empty() && s.iter().all(Status::is_verified);
     let refuted = ["E0301", "E0303", "E0304", "E0305", "E0401"];
-    let (first_ok, mut first_diags) = match &p.first {
-        Some(part) => {
-            let (s, d) = part_outcome(checked, part, p.span);
-            (holds(&s), d)
-        }
-        None => (true, Vec::new()),
+    let (first_statuses, mut first_diags) = match &p.first {
+        Some(part) => part_outcome(checked, part, p.span),
+        None => (Vec::new(), Vec::new()),
     };
+    let first_ok = p.first.is_none() || holds(&first_statuses);
+    let rest = p
+        .rest
+        .as_ref()
+        .map(|part| part_outcome(checked, part, p.span));
     if p.firm && !p.states && first_diags.iter().any(|x| refuted.contains(&x.code)) {
         return ChainReport {
             span: p.span,
@@ -707,10 +709,8 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
         };
     }
     // A verified chain says what its links assume (a division the signs do not show safe).
-    let mut assuming = Vec::new();
-    for part in [&p.first, &p.rest].into_iter().flatten() {
-        assuming.extend(conditions(&part_outcome(checked, part, p.span).0));
-    }
+    let mut assuming = conditions(&first_statuses);
+    assuming.extend(rest.iter().flat_map(|(s, _)| conditions(s)));
     let report = |verdict, diagnostics| ChainReport {
         span: p.span,
         assuming: if verdict == Verdict::Verified {
@@ -721,8 +721,7 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
         verdict,
         diagnostics,
     };
-    if let Some(part) = &p.rest {
-        let (s, mut d) = part_outcome(checked, part, p.span);
+    if let Some((s, mut d)) = rest {
         if d.iter().any(|x| refuted.contains(&x.code)) {
             if d.iter()
                 .any(|x| refuted.contains(&x.code) && later_is_a_mistake(p, x))

@@ -155,62 +155,68 @@ fn merged_poly(p: &Poly, s: &Assumptions) -> Result<(Rat, bool), NormError> {
 pub fn merged_logs(r: &Rat, s: &Assumptions) -> Option<Rat> {
     use num_integer::Integer;
     use num_traits::ToPrimitive;
-    // By cofactor (the term's monomial without its logarithm): each `ln(u)` with its
-    // coefficient.
-    type Logs = Vec<(Rat, super::Q)>;
+    // By cofactor (the term's monomial without its logarithm): each term with its `ln`'s
+    // argument.
+    type Logs = Vec<(Mono, super::Q, Rat)>;
     let mut groups: BTreeMap<Vec<(AtomId, u32)>, Logs> = BTreeMap::new();
     let mut others = Vec::new();
     for (m, q) in r.num().terms() {
-        let lns: Vec<(AtomId, u32)> = m
+        let lns: Vec<(AtomId, u32, Rat)> = m
             .pairs()
             .iter()
-            .filter(|(a, _)| matches!(&*atom::get(*a), Atom::Ln(_)))
-            .copied()
+            .filter_map(|&(a, e)| match &*atom::get(a) {
+                Atom::Ln(u) => Some((a, e, u.clone())),
+                _ => None,
+            })
             .collect();
         match lns.as_slice() {
-            [(a, 1)] => {
-                let Atom::Ln(u) = &*atom::get(*a) else {
-                    continue;
-                };
+            [(a, 1, u)] => {
                 let key: Vec<(AtomId, u32)> =
                     m.pairs().iter().filter(|p| p.0 != *a).copied().collect();
-                groups.entry(key).or_default().push((u.clone(), q.clone()));
+                groups
+                    .entry(key)
+                    .or_default()
+                    .push((m.clone(), q.clone(), u.clone()));
             }
             _ => others.push((m.clone(), q.clone())),
         }
     }
-    if groups.values().all(|g| g.len() < 2) {
-        return None;
-    }
-    let mut total = Rat::poly(Poly::from_terms(others)).ok()?;
-    let mut any = false;
+    let mut merged = Vec::new();
     for (key, items) in groups {
-        let cofactor = Rat::poly(Poly::term(Mono::from_pairs(key)?, super::Q::one())).ok()?;
         // ln(u) + ln(v) = ln(u v) only where u, v > 0: the signs must show it (as for
-        // roots, the right side is defined for u, v < 0 too).
-        let merge = items.len() >= 2 && items.iter().all(|(u, _)| s.rat(u) == super::Sign::Pos);
+        // roots, the right side is defined for u, v < 0 too). Otherwise the terms stay.
+        let merge = items.len() >= 2 && items.iter().all(|(_, _, u)| s.rat(u) == super::Sign::Pos);
         if !merge {
-            for (u, q) in &items {
-                let l = Rat::atom(atom::intern(Atom::Ln(u.clone())));
-                total = total.add(&l.mul(&cofactor).ok()?.scale(q)).ok()?;
-            }
+            others.extend(items.into_iter().map(|(m, q, _)| (m, q)));
             continue;
         }
-        any = true;
         let den = items
             .iter()
-            .fold(num_bigint::BigInt::from(1), |d, (_, q)| d.lcm(q.denom()));
+            .fold(num_bigint::BigInt::from(1), |d, (_, q, _)| d.lcm(q.denom()));
         let mut product = Rat::one();
-        for (u, q) in &items {
+        for (_, q, u) in &items {
             let k = (q * super::Q::from_integer(den.clone())).to_integer();
             let k = k.to_i64().filter(|k| k.abs() <= 64)?;
             product = product.mul(&u.powi(k).ok()?).ok()?;
         }
-        let l = func::ln(&product, s).ok()?;
+        let cofactor = Rat::poly(Poly::term(Mono::from_pairs(key)?, super::Q::one())).ok()?;
         let scale = super::Q::new(num_bigint::BigInt::from(1), den);
-        total = total.add(&l.mul(&cofactor).ok()?.scale(&scale)).ok()?;
+        merged.push(
+            func::ln(&product, s)
+                .ok()?
+                .mul(&cofactor)
+                .ok()?
+                .scale(&scale),
+        );
     }
-    any.then_some(total)
+    if merged.is_empty() {
+        return None;
+    }
+    let mut total = Rat::poly(Poly::from_terms(others)).ok()?;
+    for m in &merged {
+        total = total.add(m).ok()?;
+    }
+    Some(total)
 }
 
 #[cfg(test)]
