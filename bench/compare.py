@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Side-by-side timing of rigor, SymPy, SymEngine and python-flint on the workloads of
-../shared/bench/WORKLOADS.md (W1-W4), following its protocol:
+bench/WORKLOADS.md (W1-W4), following its protocol:
 
 * one fresh process per cell (workload, variant, size); the process first runs the
   series' smallest size once (untimed), then the cell once (t0); t0 < 5 s: warm-up,
@@ -40,7 +40,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
 VENV = os.path.join(HERE, ".venv")
 VPY = os.path.join(VENV, "bin", "python")
-BENCH_DIR = os.environ.get("RIGOR_BENCH_DIR", os.path.join(REPO, "..", "shared", "bench"))
+BENCH_DIR = os.environ.get("RIGOR_BENCH_DIR", os.path.join(REPO, "bench"))
 RUN_CAP = 60.0
 PREDICT_CAP = 180.0
 MEM_LIMIT = 10 * 1024**3

@@ -1,4 +1,4 @@
-//! Criterion benchmarks of the workloads of `../shared/bench/WORKLOADS.md`, in-process.
+//! Criterion benchmarks of the workloads of `bench/WORKLOADS.md`, in-process.
 //! `cargo bench --bench workloads` (a few minutes). The cross-tool comparison, one
 //! process per cell, is `python3 bench/compare.py`.
 

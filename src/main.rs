@@ -20,7 +20,8 @@ struct Cli {
     /// Largest number of decimal digits a power may produce.
     #[arg(long, global = true, default_value_t = 120_000)]
     max_digits: u64,
-    /// Wall-clock budget, in seconds, per claim (`check`) or per command (`simplify`, `equiv`).
+    /// Wall-clock budget, in seconds, per claim (`check`) or per command (`simplify`, `equiv`);
+    /// 0: no budget.
     #[arg(long, global = true, default_value_t = 10.0)]
     timeout: f64,
 }
@@ -146,7 +147,8 @@ enum Command {
         #[arg(long, value_enum, default_value_t = MarkFormat::Human)]
         format: MarkFormat,
         /// Time budget of one submission, in seconds: once spent, its remaining steps
-        /// are undecided (the row says so), and the rest of the class is unaffected.
+        /// are undecided (the row says so), and the rest of the class is unaffected; 0: no
+        /// budget.
         #[arg(long, default_value_t = 30.0)]
         budget: f64,
     },
@@ -264,6 +266,10 @@ fn main() -> ExitCode {
 /// A duration given in seconds on the command line (`default` when it is not a
 /// positive number).
 fn seconds(given: f64, default: f64) -> std::time::Duration {
+    if given == 0.0 {
+        // `--timeout 0`: no budget (a deadline that never passes).
+        return std::time::Duration::MAX;
+    }
     let s = if given.is_finite() && given > 0.0 {
         given
     } else {

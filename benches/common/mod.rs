@@ -1,4 +1,4 @@
-//! The workloads of `../shared/bench/WORKLOADS.md` (W1–W4) implemented with rigor's
+//! The workloads of `bench/WORKLOADS.md` (W1–W4) implemented with rigor's
 //! library API, shared by the criterion benchmarks (`benches/workloads.rs`) and the
 //! one-cell-per-process driver used by `bench/compare.py` (`benches/cell.rs`).
 //!
@@ -23,7 +23,7 @@ pub fn bench_dir() -> PathBuf {
         return PathBuf::from(d);
     }
     let here = Path::new(env!("CARGO_MANIFEST_DIR"));
-    here.join("../shared/bench")
+    here.join("bench")
 }
 
 /// The repository root (for `derivations/`).

@@ -92,7 +92,7 @@ pub fn has_kept(r: &Rat) -> bool {
 const SETTLE_COST: u64 = 2_000_000;
 
 /// `d`, a difference that is zero when the step holds, settled as far as its kept factors
-/// allow: zero when it vanishes ([`vanishes`]); otherwise written out in full when that is
+/// allow: zero when it vanishes (`vanishes`); otherwise written out in full when that is
 /// affordable (the canonical form, from which the checker may conclude), else as it is.
 pub fn settle(d: &Rat, s: &Assumptions) -> Rat {
     if d.is_zero() || !has_kept(d) {

@@ -1,12 +1,12 @@
 //! Checker fixtures: `tests/check/pass` must verify, every `tests/check/fail` file must
 //! fail with the diagnostic in its snapshot, and every handout derivation must verify.
 
-use rigor::check::{FileReport, Options, Status};
+use rigor::check::{FileReport, Status};
 use rigor::files::check_paths;
 use std::path::{Path, PathBuf};
 
 fn check_one(path: &Path) -> FileReport {
-    let mut reports = check_paths(&[path.to_path_buf()], &Options::default());
+    let mut reports = check_paths(&[path.to_path_buf()], &crate::no_budget());
     assert_eq!(reports.len(), 1, "one report per file");
     reports.remove(0)
 }
@@ -112,7 +112,7 @@ fn handout_derivations_verify() {
 #[test]
 fn results_come_in_a_stable_order() {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("derivations");
-    let a: Vec<String> = check_paths(std::slice::from_ref(&dir), &Options::default())
+    let a: Vec<String> = check_paths(std::slice::from_ref(&dir), &crate::no_budget())
         .into_iter()
         .map(|r| r.path)
         .collect();
@@ -267,7 +267,7 @@ fn two_independent_mistakes_stay_two_errors_and_a_consequence_becomes_a_note() {
         rigor::check_source(
             "two.deriv",
             text,
-            &rigor::check::Options::default(),
+            &crate::no_budget(),
             &rigor::check::MemoryResolver::new(),
         )
     };

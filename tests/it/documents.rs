@@ -2,7 +2,6 @@
 //! and without the filled-in work of `--steps`, and of two failing fixtures, as
 //! reviewed snapshots. (`src/render/tests.rs` compiles the LaTeX with pdflatex.)
 
-use rigor::check::Options;
 use rigor::files::check_paths;
 use rigor::render::{latex, markdown, Detail};
 use std::path::{Path, PathBuf};
@@ -10,7 +9,7 @@ use std::path::{Path, PathBuf};
 /// The four documents of one file, each as a snapshot named after the file; whether
 /// `--steps` filled anything in.
 fn snapshot_documents(path: &Path) -> bool {
-    let mut reports = check_paths(&[path.to_path_buf()], &Options::default());
+    let mut reports = check_paths(&[path.to_path_buf()], &crate::no_budget());
     assert_eq!(reports.len(), 1, "{}", path.display());
     let mut r = reports.remove(0);
     // The path as the snapshot shows it does not depend on where the repository is.

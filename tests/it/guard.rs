@@ -9,7 +9,7 @@ use std::path::PathBuf;
 fn corrupt() -> Options {
     Options {
         corrupt_for_tests: true,
-        ..Options::default()
+        ..crate::no_budget()
     }
 }
 
@@ -45,7 +45,7 @@ fn a_forced_wrong_normal_form_is_caught_and_made_undecided() {
     let r = rigor::check_source(
         "t.deriv",
         src,
-        &Options::default(),
+        &crate::no_budget(),
         &rigor::MemoryResolver::new(),
     );
     assert_eq!((r.verified(), r.failed()), (1, 2));
@@ -55,7 +55,7 @@ fn a_forced_wrong_normal_form_is_caught_and_made_undecided() {
 fn the_guard_checks_most_verified_links_of_the_handout_and_never_doubts_them() {
     let (mut verified, mut guarded) = (0, 0);
     for dir in ["derivations", "tests/check/pass"] {
-        for r in check(dir, &Options::default()) {
+        for r in check(dir, &crate::no_budget()) {
             assert!(r.ok(), "{}: {:?}", r.path, r.diagnostics);
             assert_eq!(undecided(&r), 0, "{}", r.path);
             verified += r.verified();
@@ -73,7 +73,7 @@ fn the_guard_checks_most_verified_links_of_the_handout_and_never_doubts_them() {
 #[test]
 fn with_a_broken_engine_the_guard_still_stops_most_false_steps() {
     let reports = check("tests/check/fail", &corrupt());
-    let honest = check("tests/check/fail", &Options::default());
+    let honest = check("tests/check/fail", &crate::no_budget());
     let mut refuted = 0;
     let mut caught = 0;
     for (broken, real) in reports.iter().zip(&honest) {

@@ -22,7 +22,7 @@ claim [end] I_A = 4 M a^2/3 by [PA]
 fn an_in_memory_derivation_imports_another_through_the_resolver() {
     let mut files = MemoryResolver::new();
     files.insert("lib/rod.deriv", ROD);
-    let r = check_source("main.deriv", MAIN, &Options::default(), &files);
+    let r = check_source("main.deriv", MAIN, &crate::no_budget(), &files);
     assert!(r.ok(), "{:?}", r.diagnostics);
     assert_eq!((r.claims.len(), r.verified(), r.failed()), (1, 1, 0));
     assert_eq!(
@@ -38,7 +38,7 @@ fn an_in_memory_derivation_imports_another_through_the_resolver() {
         "symbols m g L > 0\nunknowns T\ngiven [T] T = m g L\nclaim [TT] T = m g L by [T]\n",
     );
     let uses = "symbols M h > 0\nunknowns T\nuse [TT] from \"lib/tension.deriv\" with m = M, g = 10, L = h\nclaim [t] T = 10 M h by [TT]\nclaim [wrong] T = 9 M h by [TT]\n";
-    let r = check_source("main.deriv", uses, &Options::default(), &files);
+    let r = check_source("main.deriv", uses, &crate::no_budget(), &files);
     assert_eq!((r.verified(), r.failed()), (1, 1), "{:?}", r.diagnostics);
     assert_eq!(
         r.claims[0].links[0].status,
@@ -52,7 +52,7 @@ fn an_in_memory_derivation_imports_another_through_the_resolver() {
 #[test]
 fn a_missing_import_is_an_error_at_the_path() {
     let files = MemoryResolver::new();
-    let r = check_source("main.deriv", MAIN, &Options::default(), &files);
+    let r = check_source("main.deriv", MAIN, &crate::no_budget(), &files);
     assert!(r.input_error);
     let d = &r.diagnostics[0];
     assert_eq!(d.code, "E0206");
@@ -101,7 +101,11 @@ fn without_a_clock_there_is_no_time_budget_and_the_verdict_is_the_same() {
         ..Options::default()
     };
     let a = check_source("main.deriv", MAIN, &no_clock, &files);
-    let b = check_source("main.deriv", MAIN, &Options::default(), &files);
+    let with_clock = Options {
+        clock: Some(crate::ticking_clock),
+        ..Options::default()
+    };
+    let b = check_source("main.deriv", MAIN, &with_clock, &files);
     assert_eq!(a.claims, b.claims);
     assert!(a.ok());
 }
@@ -110,7 +114,7 @@ fn without_a_clock_there_is_no_time_budget_and_the_verdict_is_the_same() {
 fn a_byte_order_mark_is_not_part_of_the_text() {
     let files = MemoryResolver::new();
     let text = format!("\u{feff}{ROD}");
-    let r = check_source("rod.deriv", &text, &Options::default(), &files);
+    let r = check_source("rod.deriv", &text, &crate::no_budget(), &files);
     assert!(r.ok(), "{:?}", r.diagnostics);
     assert_eq!(r.verified(), 1);
     // Spans point into the text as reported (without the mark).
@@ -121,7 +125,7 @@ fn a_byte_order_mark_is_not_part_of_the_text() {
 fn a_root_index_above_64_is_refused_with_that_limit() {
     let files = MemoryResolver::new();
     let text = "symbols x > 0\nclaim [r] x^(1/65) = x^(1/65)\n";
-    let r = check_source("r.deriv", text, &Options::default(), &files);
+    let r = check_source("r.deriv", text, &crate::no_budget(), &files);
     assert!(!r.ok());
     let msg: Vec<&str> = r.diagnostics.iter().map(|d| d.message.as_str()).collect();
     assert!(
@@ -130,13 +134,13 @@ fn a_root_index_above_64_is_refused_with_that_limit() {
     );
     // The 64th root itself is taken.
     let text = "symbols x > 0\nclaim [r] (x^64)^(1/64) = x\n";
-    let r = check_source("r.deriv", text, &Options::default(), &files);
+    let r = check_source("r.deriv", text, &crate::no_budget(), &files);
     assert!(r.ok(), "{:?}", r.diagnostics);
 }
 
 /// The codes and hints of `src`'s diagnostics, in order.
 fn diagnoses(src: &str) -> Vec<(String, String)> {
-    let r = check_source("x.deriv", src, &Options::default(), &MemoryResolver::new());
+    let r = check_source("x.deriv", src, &crate::no_budget(), &MemoryResolver::new());
     r.diagnostics
         .iter()
         .map(|d| {

@@ -16,6 +16,7 @@ mod mark;
 mod normal;
 mod props;
 mod readme;
+mod repository;
 mod soundness;
 mod web;
 mod workloads;
@@ -39,3 +40,26 @@ pub fn config(default: u32) -> proptest::test_runner::Config {
         ..proptest::test_runner::Config::default()
     }
 }
+
+/// Checker options for tests about verdicts: no wall-clock budget, so that a loaded
+/// machine cannot turn a verdict into "ran out of its time budget". Tests of the budget
+/// itself set a clock of their own.
+pub fn no_budget() -> rigor::Options {
+    rigor::Options {
+        clock: None,
+        ..rigor::Options::default()
+    }
+}
+
+/// A clock that advances one microsecond each time it is read, on each thread: a budget
+/// on it is a budget of work, the same on every machine however loaded. For tests whose
+/// inputs are random and may hold a pathological case.
+pub fn ticking_clock() -> std::time::Duration {
+    use std::cell::Cell;
+    thread_local!(static TICKS: Cell<u64> = const { Cell::new(0) });
+    TICKS.with(|t| {
+        t.set(t.get() + 1);
+        std::time::Duration::from_micros(t.get())
+    })
+}
+

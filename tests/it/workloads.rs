@@ -1,4 +1,4 @@
-//! The performance workloads of `../shared/bench/WORKLOADS.md`, checked for correctness
+//! The performance workloads of `bench/WORKLOADS.md`, checked for correctness
 //! (their speed is measured by `benches/`, never by a test).
 
 use rigor::lower::{lower, Env};
