@@ -1,23 +1,23 @@
 #!/usr/bin/env bash
-# Times `rigor lint` on two generated 10 MB Markdown documents (issue #18: a 10 MB
+# Times `rigor lint` on three generated 10 MB Markdown documents (issue #18: a 10 MB
 # document is linted in well under a second):
-#   prose  — lecture notes as they are: mostly prose, with the handout's equations once
-#            in every ~100 KB section;
-#   dense  — the handout itself repeated until 10 MB (every display math block kept);
+#   prose  — lecture notes as they are: mostly prose, with the equations of our own
+#            notes (tests/lint/handout_notes.md) once in every ~100 KB section;
+#   dense  — those notes themselves repeated until 10 MB (every display math block kept);
 #   unread — 10 MB of displays rigor cannot read (`\foo`, `\begin{tikzpicture}`): each
 #            is a needs-context finding, and reporting them must stay linear.
 # Usage: bench/lint_large.sh [runs]   (needs a release build: cargo build --release)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-5}
-seed=../shared/seeds/000_4a418897358df19b.txt
+notes=tests/lint/handout_notes.md
 bin=target/release/rigor
 [ -x "$bin" ] || cargo build --release --quiet
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
-python3 - "$seed" "$dir" <<'PY'
+python3 - "$notes" "$dir" <<'PY'
 import sys
-seed, out = open(sys.argv[1]).read(), sys.argv[2]
+notes, out = open(sys.argv[1]).read(), sys.argv[2]
 target = 9_900_000  # just under the 10 MB (10,000,000-byte) file limit
 filler = ("The moment of inertia depends on how the mass is spread about the axis; "
           "a body with its mass far from the axis resists angular acceleration more. ") * 12
@@ -26,7 +26,7 @@ with open(f"{out}/prose.md", "w") as f:
     while True:
         part = f"\n\n## Section {k}\n\n" + (filler + "\n\n") * 60
         if k % 1 == 0:
-            part += seed
+            part += notes
         if size + len(part) > target: break
         f.write(part); size += len(part); k += 1
 with open(f"{out}/unread.md", "w") as f:
@@ -35,7 +35,7 @@ with open(f"{out}/unread.md", "w") as f:
 with open(f"{out}/dense.md", "w") as f:
     size, k = 0, 0
     while True:
-        part = f"\n\n# Copy {k}\n\n" + seed
+        part = f"\n\n# Copy {k}\n\n" + notes
         if size + len(part) > target: break
         f.write(part); size += len(part); k += 1
 PY

@@ -1,5 +1,6 @@
-//! `rigor lint` on lecture notes: the handout as it is, and two documents of our own with
-//! deliberate mistakes; the full report of each is a snapshot.
+//! `rigor lint` on lecture notes: our own notes on rigid bodies as a lecturer writes them
+//! (Markdown and LaTeX), and documents of our own with deliberate mistakes; the full
+//! report of each is a snapshot.
 
 use std::path::Path;
 use std::process::Command;
@@ -44,133 +45,238 @@ fn notes_with_mistakes_fail_at_the_mistakes_only() {
 }
 
 #[test]
-fn the_handout_as_it_is_never_fails_and_verifies_what_holds_on_its_own() {
-    let seed =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/seeds/000_4a418897358df19b.txt");
-    let Ok(text) = std::fs::read_to_string(&seed) else {
-        panic!("the handout is at {}", seed.display());
-    };
-    let dir = std::env::temp_dir().join(format!("rigor-lint-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("a temporary folder");
-    let doc = dir.join("handout.md");
-    std::fs::write(&doc, text).expect("written");
-    let (out, err, code) = lint(&[&doc.display().to_string()]);
-    assert_eq!(code, 0, "no chain of the handout is false:\n{out}{err}");
-    let summary = out.lines().last().unwrap_or_default().to_string();
-    assert!(
-        summary.starts_with("chains: 51, verified: 21, failed: 0"),
-        "{summary}"
-    );
-    // Scopes are checked in parallel: the report must not depend on which ran first.
-    for _ in 0..2 {
-        let (again, _, _) = lint(&[&doc.display().to_string()]);
-        assert_eq!(again, out, "the same report every time");
-    }
-    let report = out.replace(&doc.display().to_string(), "handout.md");
-    // The chains that hold on their own: the rod's I_G from the integral on, its I_O,
-    // the disk's dm (its algebra) and its integral, the trapdoor's relations.
-    for at in [
-        "68:23", "69:3", "73:24", "77:27", "167:113", "171:3", "182:3",
-    ] {
-        assert!(
-            report.contains(&format!("handout.md:{at}: verified")),
-            "{at} is verified:\n{report}"
-        );
-    }
-    // What rests on prose needs context, and says what.
-    assert!(
-        report.contains("handout.md:68:3: needs context: it integrates over dm"),
-        "{report}"
-    );
-    assert!(
-        report.contains("handout.md:73:3: needs context: this step brings in r, R"),
-        "{report}"
-    );
-    // `a b = I_G/m` is the zero-acceleration condition divided by F/m (F = m y_G''):
-    // nothing says F is not zero, and the report says so.
-    assert!(
-        report.contains("handout.md:216:3: needs context: not verified: this step is line 212 divided by m y_G'', so it follows only where m y_G'' != 0"),
-        "{report}"
-    );
-    insta::assert_snapshot!(report);
-    let _ = std::fs::remove_dir_all(&dir);
-}
-
-#[test]
 fn a_missing_document_is_bad_input() {
     let (_, err, code) = lint(&["tests/lint/no_such_notes.md"]);
     assert_eq!(code, 2);
     assert!(err.contains("no_such_notes.md"), "{err}");
 }
 
-/// The handout with its symbols declared in comments (the blow of the centre of
+/// The text of a fixture under `tests/lint`.
+fn fixture(name: &str) -> String {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/lint")
+        .join(name);
+    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// The number of the one line of `text` that holds `needle`.
+fn line_of(text: &str, needle: &str) -> usize {
+    let found: Vec<usize> = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| l.contains(needle))
+        .map(|(i, _)| i + 1)
+        .collect();
+    assert_eq!(
+        found.len(),
+        1,
+        "`{needle}` is on one line of the notes: {found:?}"
+    );
+    found[0]
+}
+
+/// `line:column` of `part` in the one line of `text` that holds `needle` (columns count
+/// from 1, as the report's do).
+fn place(text: &str, needle: &str, part: &str) -> String {
+    let n = line_of(text, needle);
+    let line = text.lines().nth(n - 1).unwrap_or_default();
+    let col = line
+        .find(part)
+        .unwrap_or_else(|| panic!("`{part}` is on the line of `{needle}`"));
+    format!("{n}:{}", col + 1)
+}
+
+/// Lints `path` three times and asserts the reports are the same: scopes are checked in
+/// parallel, and the report must not depend on which ran first.
+fn lint_steadily(path: &str) -> (String, String, i32) {
+    let first = lint(&[path]);
+    for _ in 0..2 {
+        assert_eq!(lint(&[path]), first, "the same report every time");
+    }
+    first
+}
+
+#[test]
+fn the_lecture_notes_as_written_never_fail_and_verify_what_holds_on_its_own() {
+    let doc = "tests/lint/handout_notes.md";
+    let text = fixture("handout_notes.md");
+    let (out, err, code) = lint_steadily(doc);
+    assert_eq!(code, 0, "no chain of the notes is false:\n{out}{err}");
+    assert!(
+        out.ends_with("\nchains: 53, verified: 22, failed: 0, needs context: 31\n"),
+        "{out}"
+    );
+    let has = |at: &str, what: &str| {
+        let line = format!("{doc}:{at}: {what}");
+        assert!(out.contains(&line), "{line}\n{out}");
+    };
+    // The chains that hold on their own: the rod's I_G from the integral on, its I_O,
+    // the disk's dm (its algebra) and its integral, the trapdoor's relations.
+    for (needle, part) in [
+        ("$$I_G = \\int y^2 dm", "\\int_{-L/2}"),
+        ("$$I_O = \\frac{mL^2}{12}", "I_O"),
+        ("$$dm = m\\frac{dA}{A}", "m\\frac{2\\pi"),
+        ("$$I_G = \\int_0^R", "\\frac{2m}{R^2} \\int"),
+        ("\\sum M(A):", "\\ddot{\\theta} = -\\frac{3}{2}"),
+        ("$$\\ddot{y}_B", "\\ddot{y}_B"),
+        ("$$\\ddot{y}_G = ", "\\ddot{y}_G"),
+        ("$$R = ", "R"),
+    ] {
+        has(&place(&text, needle, part), "verified");
+    }
+    // What rests on prose needs context, and says what.
+    has(
+        &place(&text, "$$I_G = \\int y^2 dm", "I_G"),
+        "needs context: it integrates over dm",
+    );
+    has(
+        &place(&text, "$$dm = m\\frac{dA}{A}", "dm"),
+        "needs context: this step brings in r, R",
+    );
+    // `a b = I_G/m` is the zero-acceleration condition divided by F/m (F = m y_G''):
+    // nothing says F is not zero, and the report says so.
+    let condition = line_of(&text, "$$\\frac{F}{m} - b");
+    has(
+        &place(&text, "$$a b = ", "a b"),
+        &format!("needs context: not verified: this step is line {condition} divided by m y_G'', so it follows only where m y_G'' != 0"),
+    );
+    insta::assert_snapshot!(format!("{out}\n{err}"));
+}
+
+/// The notes with their symbols declared in comments (the blow of the centre of
 /// percussion nonzero too), and a comment heading where the notes change scenario
-/// without one (frictionless, then slipping).
-fn declared_handout(text: &str) -> String {
+/// without one (frictionless, then slipping): each comment goes before or after the one
+/// line that holds its anchor.
+fn declared(text: &str) -> String {
+    let before = [
+        ("**No friction.**", "<!-- rigor: ## Frictionless slope -->"),
+        (
+            "**Slipping while rolling.**",
+            "<!-- rigor: ## Sliding and rolling -->",
+        ),
+    ];
+    let after = [
+        (
+            "## Example 5.1",
+            "<!-- rigor: symbols m g R I_G > 0 -->\n<!-- rigor: symbols 0 < beta < pi/2 -->",
+        ),
+        (
+            "## 5.3 Centre of percussion",
+            "<!-- rigor: symbols F != 0 -->",
+        ),
+    ];
+    for (anchor, _) in before.iter().chain(&after) {
+        line_of(text, anchor);
+    }
     let mut out = String::new();
     for line in text.lines() {
-        if line.starts_with("Sliding vs Rolling") {
-            out.push_str("<!-- rigor: ## Sliding -->\n\n");
-        }
-        if line.starts_with("Sliding and Rolling") {
-            out.push_str("<!-- rigor: ## Sliding and rolling -->\n\n");
+        for (anchor, comment) in before {
+            if line.starts_with(anchor) {
+                out.push_str(&format!("{comment}\n\n"));
+            }
         }
         out.push_str(line);
         out.push('\n');
-        if line.starts_with("Example 5.1") {
-            out.push_str("\n<!-- rigor: symbols m g R I_G > 0 -->\n");
-            out.push_str("<!-- rigor: symbols 0 < beta < pi/2 -->\n");
-        }
-        if line.starts_with("5.3 Centre of Percussion") {
-            out.push_str("\n<!-- rigor: symbols F != 0 -->\n");
+        for (anchor, comment) in after {
+            if line.starts_with(anchor) {
+                out.push_str(&format!("\n{comment}\n"));
+            }
         }
     }
     out
 }
 
 #[test]
-fn the_handout_with_its_symbols_declared_verifies_the_rolling_and_sliding_accelerations() {
-    let seed =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/seeds/000_4a418897358df19b.txt");
-    let Ok(text) = std::fs::read_to_string(&seed) else {
-        panic!("the handout is at {}", seed.display());
-    };
-    let declared = declared_handout(&text);
-    assert_ne!(declared, text, "the comments went in");
+fn the_lecture_notes_with_their_symbols_declared_verify_the_rolling_and_sliding_accelerations() {
+    let text = declared(&fixture("handout_notes.md"));
     let dir = std::env::temp_dir().join(format!("rigor-lint-decl-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("a temporary folder");
-    let doc = dir.join("handout.md");
-    std::fs::write(&doc, &declared).expect("written");
+    let doc = dir.join("handout_notes_declared.md");
+    std::fs::write(&doc, &text).expect("written");
     let (out, err, code) = lint(&[&doc.display().to_string()]);
-    let out = out.replace(&doc.display().to_string(), "handout.md");
-    assert_eq!(code, 0, "no chain of the handout is false:\n{out}{err}");
-    let line_of = |needle: &str| {
-        declared
-            .lines()
-            .position(|l| l.contains(needle))
-            .map(|i| i + 1)
-            .unwrap_or_else(|| panic!("{needle} is in the handout"))
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = out.replace(&doc.display().to_string(), "handout_notes_declared.md");
+    assert_eq!(code, 0, "no chain of the notes is false:\n{out}{err}");
+    assert!(
+        out.ends_with("\nchains: 54, verified: 17, failed: 0, needs context: 37\n"),
+        "{out}"
+    );
+    let has = |at: &str, what: &str| {
+        let line = format!("handout_notes_declared.md:{at}: {what}");
+        assert!(out.contains(&line), "{line}\n{out}");
     };
     // N = mg cos(beta); the rolling acceleration; the sliding x'' and theta''.
     for needle in [
-        "$$N = mg \\cos \\beta$$",
-        "$$\\ddot{x} = -\\frac{g\\sin\\beta}{1 + I_G/\\left(mR^2\\right)}$$",
-        "$$\\ddot{x} = g \\left(\\mu \\cos \\beta - \\sin \\beta \\right)$$",
-        "$$\\ddot{\\theta} = \\frac{R\\mu mg \\cos \\beta}{I_G}$$",
+        "$$N = mg",
+        "$$\\ddot{x} = -\\frac{g\\sin\\beta}",
+        "$$\\ddot{x} = g \\left(\\mu",
+        "$$\\ddot{\\theta} = \\frac{R\\mu",
     ] {
-        let at = format!("handout.md:{}:3: verified", line_of(needle));
-        assert!(out.contains(&at), "{at}\n{out}");
+        has(&format!("{}:3", line_of(&text, needle)), "verified\n");
     }
     // The centre of percussion: `a b = I_G/m` verified from the condition before it,
     // `= k_G^2` needs the definition of k_G.
-    let ab = line_of("$$a b = \\frac{I_G}{m} = k_G^2$$");
-    for at in [
-        format!("handout.md:{ab}:3: verified"),
-        format!("handout.md:{ab}:9: needs context: this step brings in k_G"),
+    has(&place(&text, "$$a b = ", "a b"), "verified\n");
+    has(
+        &place(&text, "$$a b = ", "\\frac{I_G}{m}"),
+        "needs context: this step brings in k_G",
+    );
+    insta::assert_snapshot!(format!("{out}\n{err}"));
+}
+
+#[test]
+fn the_lecture_notes_in_latex_never_fail_and_verify_the_same_chains() {
+    let doc = "tests/lint/handout_notes.tex";
+    let text = fixture("handout_notes.tex");
+    let (out, err, code) = lint_steadily(doc);
+    assert_eq!(code, 0, "no chain of the notes is false:\n{out}{err}");
+    assert!(
+        out.ends_with("\nchains: 43, verified: 19, failed: 0, needs context: 24\n"),
+        "{out}"
+    );
+    let has = |at: &str, what: &str| {
+        let line = format!("{doc}:{at}: {what}");
+        assert!(out.contains(&line), "{line}\n{out}");
+    };
+    // `equation` (with `\label`), `align*` (a chain a line, labels left out),
+    // `equation*` and `\[ … \]`, with `%` comments between them and `$…$` in the prose
+    // never read. `M = I_O \ddot{\theta}` is a definition (M is new); the rest are checked.
+    for (needle, part) in [
+        ("M = I_O \\ddot{\\theta} \\label", "M"),
+        ("= \\int \\left((x+a)^2", "\\int"),
+        ("I_G &= \\int_{-L/2}^{L/2}", "I_G"),
+        ("I_O &= \\frac{mL^2}{12}", "I_O"),
+        ("dm = m\\frac{dA}{A}", "m\\frac{2\\pi"),
+        ("I_G = \\int_0^R", "\\frac{2m}{R^2} \\int"),
+        ("N = mg \\cos \\beta", "N"),
+        ("\\ddot{x} = -\\frac{g \\sin \\beta}", "\\ddot{x}"),
+        ("\\ddot{x} &= g \\left(\\mu", "\\ddot{x}"),
+        ("\\ddot{\\theta} &= \\frac{R \\mu m g", "\\ddot{\\theta}"),
+        (
+            "\\qquad \\rightarrow \\qquad \\ddot{\\theta}",
+            "\\ddot{\\theta} = -",
+        ),
+        ("\\ddot{y}_B &=", "\\ddot{y}_B"),
+        ("\\ddot{y}_G &= \\ddot{\\theta}", "\\ddot{y}_G"),
+        ("R = \\frac{mg}{4}", "R"),
+        ("a b = \\frac{I_G}{m}", "a b"),
     ] {
-        assert!(out.contains(&at), "{at}\n{out}");
+        has(&place(&text, needle, part), "verified");
     }
-    let _ = std::fs::remove_dir_all(&dir);
+    // The parallel axis theorem's step into I_G and the disk's first step rest on prose.
+    has(
+        &place(&text, "= \\int (x^2 + y^2)", "\\int"),
+        "needs context: it integrates over dm",
+    );
+    has(
+        &place(&text, "dm = m\\frac{dA}{A}", "dm"),
+        "needs context: this step brings in r, R",
+    );
+    has(
+        &place(&text, "a b = \\frac{I_G}{m}", "\\frac{I_G}{m}"),
+        "needs context: this step brings in k_G",
+    );
+    insta::assert_snapshot!(format!("{out}\n{err}"));
 }
 
 #[test]

@@ -5,8 +5,8 @@
 use std::path::Path;
 use std::process::Command;
 
-/// Splits a command line into words, with double quotes.
-fn words(line: &str) -> Vec<String> {
+/// Splits a command line into words, with double quotes (shared with `docs.rs`).
+pub(crate) fn words(line: &str) -> Vec<String> {
     let mut out = Vec::new();
     let mut cur = String::new();
     let mut quoted = false;
@@ -84,7 +84,8 @@ fn examples(readme: &str) -> Vec<Example> {
     out
 }
 
-fn tidy(s: &str) -> String {
+/// Output as compared: trailing spaces and blank lines around it dropped.
+pub(crate) fn tidy(s: &str) -> String {
     s.lines()
         .map(str::trim_end)
         .collect::<Vec<_>>()
