@@ -390,7 +390,10 @@ impl P {
     fn factor(&mut self) -> Result<Expr, SyntaxError> {
         self.nest()?;
         let start = self.span();
-        let base = self.primary()?;
+        let base = match self.slash_leibniz()? {
+            Some(d) => d,
+            None => self.primary()?,
+        };
         let mut e = self.power(base)?;
         // The factor covers everything it consumed, closing braces and brackets too.
         e.span = start.to(self.last_span());

@@ -318,6 +318,93 @@ impl P {
         Ok(Some(derivative(operand, var, vspan, order, span)))
     }
 
+    /// `dx/dt`, `d^2x/dt^2`, `\mathrm{d}\theta/\mathrm{d}t`, `d/dt (m v)` written with a
+    /// slash: the derivative, if the next tokens are one (else nothing is consumed).
+    pub(super) fn slash_leibniz(&mut self) -> Result<Option<Expr>, SyntaxError> {
+        let start = self.pos;
+        let span = self.span();
+        let Some((operand, var, vspan, order)) = self.slash_leibniz_shape()? else {
+            self.pos = start;
+            return Ok(None);
+        };
+        let after = self.pos;
+        self.pos = start + self.d_mark(start).unwrap_or(1);
+        let upper = self.leibniz_order()?;
+        self.pos = after;
+        let span = span.to(self.last_span());
+        if upper != order {
+            return Err(SyntaxError::new(
+                span,
+                format!("a derivative of order {upper} over `d{var}` to the power {order}: the orders must agree"),
+            ));
+        }
+        let operand = match operand {
+            Some(e) => e,
+            None => self.leibniz_operand(span)?,
+        };
+        Ok(Some(derivative(operand, var, vspan, order, span)))
+    }
+
+    /// Whether the next tokens are `d[^n]x / d t[^n]` or `d[^n] / d t[^n]`: the symbol
+    /// above the line (none for the operator), the variable, its span and the order
+    /// below the line; the position is then after them.
+    #[allow(clippy::type_complexity)]
+    fn slash_leibniz_shape(
+        &mut self,
+    ) -> Result<Option<(Option<Expr>, String, Span, u32)>, SyntaxError> {
+        let Some(dlen) = self.d_mark(self.pos) else {
+            return Ok(None);
+        };
+        self.pos += dlen;
+        if self.is_ch('^') {
+            self.pos += 1;
+            self.arg()?;
+        }
+        let operand = if self.is_ch('/') {
+            None
+        } else {
+            let Some(name) = self.variable_name() else {
+                return Ok(None);
+            };
+            let Ok(sym) = self.symbol(name, self.last_span()) else {
+                return Ok(None);
+            };
+            Some(sym)
+        };
+        if !self.eat_ch('/') {
+            return Ok(None);
+        }
+        let Some(dlen) = self.d_mark(self.pos) else {
+            return Ok(None);
+        };
+        self.pos += dlen;
+        let Some(var) = self.variable_name() else {
+            return Ok(None);
+        };
+        let Ok(v) = self.symbol(var, self.last_span()) else {
+            return Ok(None);
+        };
+        let ExprKind::Sym(name) = v.kind else {
+            return Ok(None);
+        };
+        if name.contains('\'') {
+            return Ok(None);
+        }
+        let order = self.leibniz_order()?;
+        Ok(Some((operand, name, v.span, order)))
+    }
+
+    /// A letter or Greek letter next, consumed: its name.
+    fn variable_name(&mut self) -> Option<String> {
+        let name = match self.peek()? {
+            Tok::Letter(c) => c.to_string(),
+            Tok::Cmd(c) => greek_name(c)?.to_string(),
+            _ => return None,
+        };
+        self.pos += 1;
+        Some(name)
+    }
+
     /// What `\frac{d}{dt}` differentiates: a bracket (with its power), else the
     /// juxtaposed factors after it, as a function's argument.
     fn leibniz_operand(&mut self, span: Span) -> Result<Expr, SyntaxError> {

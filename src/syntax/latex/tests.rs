@@ -360,3 +360,21 @@ fn times_between_two_quantities_is_a_cross_product() {
         assert!(m.contains("cross product"), "{s}: {m}");
     }
 }
+
+#[test]
+fn leibniz_notation_with_a_slash() {
+    same("dx/dt", "x'");
+    same(r"m\,dv/dt", "m*v'");
+    same(r"\mathrm{d}\theta/\mathrm{d}t", "theta'");
+    same("d^2x/dt^2", "x''");
+    same("dx/dt + 1", "x' + 1");
+    assert_eq!(marked("dy/dx"), leibniz("diff(y, x)"));
+    // Not a differential: a quotient, as written.
+    same("d/2", "d/2");
+    same("dx/2", "d*x/2");
+    same("d/2", "d/2");
+    assert_eq!(marked("d/dt (m v)"), leibniz("diff(m*v, t)"));
+    same(r"d/dt\,x", "x'");
+    refused("d/dt = a");
+    refused("d^2x/dt = a");
+}
