@@ -8,10 +8,12 @@
 //! - juxtaposed single letters multiply: `mL^2` is m·L², `mgd` is m·g·d;
 //! - a letter with a subscript is one symbol: `I_G`, `k_{G}`, `I_{xx}`, `\theta_0`;
 //! - `^` binds tighter than juxtaposition and is right-associative; `-x^2` is −(x²);
-//! - an unbraced function argument is the next factor with its power: `\sin x^2` is
-//!   sin(x²), `\sin\theta\cos\theta` is sin θ·cos θ; a number directly followed by a
-//!   letter is one factor there: `\sin 2\theta` is sin(2θ);
-//! - `\cos^2\theta` is (cos θ)²; `e^{x}` is exp(x) (a lone `e` is the symbol e);
+//! - an unbraced function argument runs over the factors juxtaposed after it, up to
+//!   the next operator, function, fraction or explicit space: `\cos\omega t` is
+//!   cos(ωt), `\sin x^2` is sin(x²), `\sin\theta\cos\theta` is sin θ·cos θ (the rules
+//!   in full, with Leibniz notation, increments and `\times`, are in `physics.rs`);
+//! - `\cos^2\theta` is (cos θ)²; `e^{x}` is exp(x) unless `e` is declared (then the
+//!   checker reads it as a power of the symbol e; a lone `e` is the symbol e);
 //! - the variable of an evaluation bracket is the one its lower limit names (`y=a`), or
 //!   else the one single-letter symbol of the bracket that the limits do not use.
 //!

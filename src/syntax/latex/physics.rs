@@ -3,7 +3,8 @@
 //!
 //! - **Leibniz notation is a derivative.** `\frac{dx}{dt}`, `\frac{d^2x}{dt^2}`,
 //!   `\frac{d}{dt}(…)`, `\frac{d}{dt}\left(…\right)`, with the `d` written `d`,
-//!   `\mathrm{d}`, `\text{d}` or `\operatorname{d}`: with respect to `t`, a lone symbol
+//!   `\mathrm{d}`, `\text{d}` or `\operatorname{d}`, and the same with a slash (`dx/dt`,
+//!   `d^2x/dt^2`, `d/dt\,(m v)`): with respect to `t`, a lone symbol
 //!   `x` gives `x'` (`x''`), the same tree as rigor's own syntax, and anything else
 //!   `diff(…, t)`; with respect to another variable `y`, `diff(…, y)`. Both are marked
 //!   [`Reading::Leibniz`]: the checker refuses such a derivative when its operand, as
