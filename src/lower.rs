@@ -6,7 +6,7 @@ use crate::calculus::{self, Body, IntError, Wrt};
 use crate::normal::atom::{self, Atom, AtomId};
 use crate::normal::subst::{depends_on, subst_atom};
 use crate::normal::{func, trig, Assumptions, NormError, Rat, Sign};
-use crate::syntax::ast::{BinOp, Expr, ExprKind, Func, Span};
+use crate::syntax::ast::{BinOp, Expr, ExprKind, Func, Reading, Span};
 use num_integer::Integer;
 use num_traits::{Signed, ToPrimitive};
 use std::collections::{HashMap, HashSet};
@@ -348,6 +348,9 @@ impl<'a> Lowerer<'a> {
                 };
                 r.map_err(|e| err(sp, e))
             }
+            ExprKind::Call(Func::Diff, args) if e.reading == Reading::Leibniz => {
+                self.diff(args, sp, true)
+            }
             ExprKind::Call(f, args) => self.call(*f, args, sp),
         }
     }
@@ -373,7 +376,7 @@ impl<'a> Lowerer<'a> {
                 self.function(f, args, sp)
             }
             Func::Int => self.int(args, sp),
-            Func::Diff => self.diff(args, sp),
+            Func::Diff => self.diff(args, sp, false),
             Func::Eval => {
                 let var = self.var_name(self.arg(args, 1, sp)?, "the variable of eval")?;
                 let (fv, inner) =
@@ -424,7 +427,10 @@ impl<'a> Lowerer<'a> {
         r.map_err(|e| err(sp, e))
     }
 
-    fn diff(&mut self, args: &[Expr], sp: Span) -> Result<Rat, LowerError> {
+    /// `diff(f, x[, n])`. Written in Leibniz notation (`leibniz`), the writer means a
+    /// quantity that varies with `x`: an operand that, as declared, does not vary with
+    /// it (and is not a number) is refused, never differentiated to zero.
+    fn diff(&mut self, args: &[Expr], sp: Span, leibniz: bool) -> Result<Rat, LowerError> {
         let var = self.var_name(self.arg(args, 1, sp)?, "the variable of diff")?;
         let n = match args.get(2) {
             None => 1,
@@ -451,7 +457,14 @@ impl<'a> Lowerer<'a> {
             var: x,
             time: (var == "t").then_some(&is_time as &dyn Fn(&str) -> bool),
         };
-        let d = calculus::diff_n(&fv, &wrt, n, &self.signs_without(x)).map_err(|e| err(sp, e))?;
+        let signs = self.signs_without(x);
+        if leibniz {
+            let d1 = calculus::diff(&fv, &wrt, &signs).map_err(|e| err(sp, e))?;
+            if d1.is_zero() && fv.as_constant().is_none() {
+                return Err(msg(sp, constant_operand(body, &var)));
+            }
+        }
+        let d = calculus::diff_n(&fv, &wrt, n, &signs).map_err(|e| err(sp, e))?;
         self.carry(inner, &var, Scope::Free, sp)?;
         self.free_meaning(&d, &var).map_err(|e| err(sp, e))
     }
@@ -682,5 +695,46 @@ pub fn build_body(
                 centred: *centred,
             })
         }
+    }
+}
+
+/// Why a derivative in Leibniz notation of something that does not vary with `var` is
+/// refused: what to declare instead.
+fn constant_operand(body: &Expr, var: &str) -> String {
+    let mut names = Vec::new();
+    symbol_names(body, &mut names);
+    names.retain(|n| n != var);
+    let what = match names.as_slice() {
+        [one] => format!("`{one}`"),
+        _ => format!("an expression in {}", names.join(", ")),
+    };
+    if var == "t" {
+        let bases: Vec<&str> = names.iter().map(|n| n.trim_end_matches('\'')).collect();
+        format!(
+            "a derivative with respect to time of {what}, which as declared does not change with time: declare what changes with `time` (e.g. `time {}`)",
+            bases.last().copied().unwrap_or("x")
+        )
+    } else {
+        format!(
+            "a derivative with respect to {var} of {what}, which as declared does not depend on {var}: rigor does not know it as a function of {var}"
+        )
+    }
+}
+
+/// The symbol names written in `e`, each once, in order.
+fn symbol_names(e: &Expr, out: &mut Vec<String>) {
+    match &e.kind {
+        ExprKind::Sym(n) => {
+            if !out.contains(n) {
+                out.push(n.clone());
+            }
+        }
+        ExprKind::Num(_) | ExprKind::Pi => {}
+        ExprKind::Neg(a) => symbol_names(a, out),
+        ExprKind::Bin(_, a, b) => {
+            symbol_names(a, out);
+            symbol_names(b, out);
+        }
+        ExprKind::Call(_, args) => args.iter().for_each(|a| symbol_names(a, out)),
     }
 }

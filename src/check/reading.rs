@@ -5,7 +5,7 @@
 //! the other reading.
 
 use crate::diag::{Diagnostic, Severity};
-use crate::syntax::ast::{BinOp, BodyDef, Expr, ExprKind, StmtKind};
+use crate::syntax::ast::{BinOp, BodyDef, Expr, ExprKind, Func, Reading, StmtKind};
 
 /// Every expression written in a statement.
 pub(super) fn exprs_of(kind: &StmtKind) -> Vec<&Expr> {
@@ -42,6 +42,80 @@ pub(super) fn exprs_of(kind: &StmtKind) -> Vec<&Expr> {
             ..
         } => vec![mass],
         _ => Vec::new(),
+    }
+}
+
+/// Every expression written in a statement, to change.
+fn exprs_of_mut(kind: &mut StmtKind) -> Vec<&mut Expr> {
+    fn chain(c: &mut crate::syntax::ast::Chain) -> Vec<&mut Expr> {
+        std::iter::once(&mut c.first)
+            .chain(c.links.iter_mut().map(|l| &mut l.rhs))
+            .collect()
+    }
+    match kind {
+        StmtKind::Range { lo, hi, .. } => vec![lo, hi],
+        StmtKind::Let { value, .. } => vec![value],
+        StmtKind::Given { chain: c, .. } | StmtKind::Constraint { chain: c, .. } => chain(c),
+        StmtKind::Claim {
+            chain: c, where_, ..
+        } => {
+            let mut v = chain(c);
+            v.extend(where_.iter_mut().map(|a| &mut a.value));
+            v
+        }
+        StmtKind::Use { with, .. } => with.iter_mut().map(|a| &mut a.value).collect(),
+        StmtKind::Body {
+            def: BodyDef::Concrete { dm, ranges },
+            ..
+        } => {
+            let mut v = vec![dm];
+            for r in ranges {
+                v.push(&mut r.from);
+                v.push(&mut r.to);
+            }
+            v
+        }
+        StmtKind::Body {
+            def: BodyDef::Abstract { mass, .. },
+            ..
+        } => vec![mass],
+        _ => Vec::new(),
+    }
+}
+
+/// Reads LaTeX's `e^{x}` in a statement as the declarations say: Euler's number only
+/// while no `e` is declared; where `e` is declared (a coefficient of restitution), it
+/// is a power of that symbol (`e^2 = e \cdot e`). The parser, which does not know the
+/// declarations, marks `exp(x)` read from `e^{x}` with [`Reading::EulerE`].
+pub(super) fn euler_e_as_declared(kind: &mut StmtKind, e_declared: bool) {
+    if !e_declared {
+        return;
+    }
+    for e in exprs_of_mut(kind) {
+        power_of_e(e);
+    }
+}
+
+/// `exp(x)` read from `e^{x}` turned back into the power `e^x` of the symbol `e`.
+fn power_of_e(e: &mut Expr) {
+    match &mut e.kind {
+        ExprKind::Num(_) | ExprKind::Sym(_) | ExprKind::Pi => {}
+        ExprKind::Neg(a) => power_of_e(a),
+        ExprKind::Bin(_, a, b) => {
+            power_of_e(a);
+            power_of_e(b);
+        }
+        ExprKind::Call(f, args) => {
+            args.iter_mut().for_each(power_of_e);
+            if *f == Func::Exp && e.reading == Reading::EulerE && args.len() == 1 {
+                let x = args.remove(0);
+                // `e` is the first byte of the span: `e^{x}` as written.
+                let at = crate::syntax::ast::Span::new(e.span.start, e.span.start + 1);
+                let base = Expr::new(ExprKind::Sym("e".into()), at);
+                e.kind = ExprKind::Bin(BinOp::Pow, Box::new(base), Box::new(x));
+                e.reading = Reading::AsWritten;
+            }
+        }
     }
 }
 

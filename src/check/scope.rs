@@ -72,6 +72,11 @@ impl Scope {
                 parts.join(" ")
             );
         }
+        if base.len() < name.len() && !base.is_empty() && !self.names.contains_key(base) {
+            return format!(
+                "a derivative with respect to time: declare `{base}` with `time {base}`"
+            );
+        }
         match self.suggest(name) {
             Some(s) => format!("did you mean `{s}`?"),
             None => "declare it with `symbols`, `time` or `unknowns`".into(),

@@ -113,12 +113,13 @@ impl<'l, 'o> Checker<'l, 'o> {
     }
 
     /// Checks every statement; returns the report and what the file exports.
-    pub fn run(mut self, file: File) -> (FileReport, Exports) {
+    pub fn run(mut self, mut file: File) -> (FileReport, Exports) {
         self.line_starts = std::iter::once(0)
             .chain(self.report.source.match_indices('\n').map(|(i, _)| i + 1))
             .collect();
-        for item in &file.items {
+        for item in &mut file.items {
             if let Item::Stmt(st) = item {
+                super::reading::euler_e_as_declared(&mut st.kind, self.scope.is_declared("e"));
                 for e in super::reading::exprs_of(&st.kind) {
                     super::reading::glued_after_slash(
                         e,

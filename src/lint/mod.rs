@@ -9,7 +9,7 @@ mod mass;
 
 use crate::check::{check_source, FileReport, MemoryResolver, Options, Status};
 use crate::diag::{Diagnostic, LineIndex};
-use crate::syntax::ast::{Chain, Expr, ExprKind, Func, Span};
+use crate::syntax::ast::{Chain, Expr, ExprKind, Func, Reading, Span};
 use crate::syntax::latex::{parse_latex_chain, parse_latex_links};
 use crate::syntax::ParseOptions;
 pub use extract::{pieces, DocKind, Piece};
@@ -238,6 +238,9 @@ impl Scope {
                         .filter(|n| n.ends_with('\''))
                         .map(|n| n.trim_end_matches('\'').to_string()),
                 );
+                for e in std::iter::once(&c.first).chain(c.links.iter().map(|l| &l.rhs)) {
+                    changing(e, &mut time);
+                }
             }
         }
         let mut solve = HashSet::new();
@@ -608,6 +611,30 @@ fn declare(
         if !list.is_empty() {
             deriv.push_str(&format!("{kw} {}\n", list.join(" ")));
         }
+    }
+}
+
+/// The names inside a derivative with respect to time written in Leibniz notation
+/// (`\frac{d}{dt}(m v)`): written with a derivative, so functions of time, as `x` is
+/// when the notes write `\dot x` or `\frac{dx}{dt}`.
+fn changing(e: &Expr, out: &mut HashSet<String>) {
+    let by_time =
+        |args: &[Expr]| matches!(args.get(1).map(|a| &a.kind), Some(ExprKind::Sym(v)) if v == "t");
+    match &e.kind {
+        ExprKind::Call(Func::Diff, args) if e.reading == Reading::Leibniz && by_time(args) => {
+            let mut names = Vec::new();
+            if let Some(f) = args.first() {
+                free(f, &mut vec!["t".to_string()], &mut names);
+            }
+            out.extend(names.iter().map(|n| n.trim_end_matches('\'').to_string()));
+        }
+        ExprKind::Sym(_) | ExprKind::Num(_) | ExprKind::Pi => {}
+        ExprKind::Neg(a) => changing(a, out),
+        ExprKind::Bin(_, a, b) => {
+            changing(a, out);
+            changing(b, out);
+        }
+        ExprKind::Call(_, args) => args.iter().for_each(|a| changing(a, out)),
     }
 }
 

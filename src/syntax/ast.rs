@@ -110,6 +110,23 @@ pub struct Expr {
     pub kind: ExprKind,
     /// Where it was written.
     pub span: Span,
+    /// How LaTeX notation gave the node, where the checker's reading of it depends on
+    /// the declarations (rigor's own syntax always gives [`Reading::AsWritten`]).
+    pub reading: Reading,
+}
+
+/// Where a node read from LaTeX came from, when that matters to its meaning.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Reading {
+    /// The node means what its kind says.
+    #[default]
+    AsWritten,
+    /// `exp(x)` read from `e^{x}`: a power of the symbol `e` when `e` is declared.
+    EulerE,
+    /// `diff(f, x)` read from Leibniz notation (`\frac{d}{dx}(…)`): the writer means a
+    /// quantity that varies with `x`, so an operand that, as declared, does not vary
+    /// with `x` is refused rather than differentiated to zero.
+    Leibniz,
 }
 
 /// The kinds of expression node.
@@ -134,7 +151,17 @@ pub enum ExprKind {
 impl Expr {
     /// A node.
     pub fn new(kind: ExprKind, span: Span) -> Expr {
-        Expr { kind, span }
+        Expr {
+            kind,
+            span,
+            reading: Reading::AsWritten,
+        }
+    }
+
+    /// The node, marked as read from LaTeX notation in the way `reading` says.
+    pub fn read_as(mut self, reading: Reading) -> Expr {
+        self.reading = reading;
+        self
     }
 
     /// Whether this node or any node below it satisfies `f`.

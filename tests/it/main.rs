@@ -12,8 +12,10 @@ mod error_index;
 mod fuzz;
 mod guard;
 mod hostile;
+mod latex_readings;
 mod library;
 mod lint;
+mod lint_readings;
 mod mark;
 mod normal;
 mod props;
@@ -64,4 +66,3 @@ pub fn ticking_clock() -> std::time::Duration {
         std::time::Duration::from_micros(t.get())
     })
 }
-

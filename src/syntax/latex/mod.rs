@@ -8,22 +8,25 @@
 //! - juxtaposed single letters multiply: `mL^2` is m·L², `mgd` is m·g·d;
 //! - a letter with a subscript is one symbol: `I_G`, `k_{G}`, `I_{xx}`, `\theta_0`;
 //! - `^` binds tighter than juxtaposition and is right-associative; `-x^2` is −(x²);
-//! - an unbraced function argument is the next factor with its power: `\sin x^2` is
-//!   sin(x²), `\sin\theta\cos\theta` is sin θ·cos θ; a number directly followed by a
-//!   letter is one factor there: `\sin 2\theta` is sin(2θ);
-//! - `\cos^2\theta` is (cos θ)²; `e^{x}` is exp(x) (a lone `e` is the symbol e);
+//! - an unbraced function argument runs over the factors juxtaposed after it, up to
+//!   the next operator, function, fraction or explicit space: `\cos\omega t` is
+//!   cos(ωt), `\sin x^2` is sin(x²), `\sin\theta\cos\theta` is sin θ·cos θ (the rules
+//!   in full, with Leibniz notation, increments and `\times`, are in `physics.rs`);
+//! - `\cos^2\theta` is (cos θ)²; `e^{x}` is exp(x) unless `e` is declared (then the
+//!   checker reads it as a power of the symbol e; a lone `e` is the symbol e);
 //! - the variable of an evaluation bracket is the one its lower limit names (`y=a`), or
 //!   else the one single-letter symbol of the bracket that the limits do not use.
 //!
 //! The tokenizer is written with nom; the grammar is a recursive descent over the
 //! tokens, with a nesting limit (never a stack overflow).
 
-use super::ast::{BinOp, Chain, Expr, ExprKind, Func, Link, RelOp, Span};
+use super::ast::{BinOp, Chain, Expr, ExprKind, Func, Link, Reading, RelOp, Span};
 use super::error::{ParseOptions, SyntaxError};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use tokens::{tokens, Tok, GREEK};
 
+mod physics;
 mod tokens;
 
 /// Parses a LaTeX math expression (no relation); spans are offset by `base`.
@@ -92,6 +95,10 @@ struct P {
     end: usize,
     /// Open `|…|` bars: inside one, a `|` closes it rather than starting a factor.
     bars: usize,
+    /// The math read, and the offset of its first byte: to see the spacing between
+    /// tokens (`\cos\omega\,t`), which the tokens themselves drop.
+    text: String,
+    base: usize,
 }
 
 fn node(kind: ExprKind, span: Span) -> Expr {
@@ -119,6 +126,8 @@ impl P {
             max_depth: opts.max_depth,
             end: base + text.len(),
             bars: 0,
+            text: text.to_string(),
+            base,
         })
     }
 
@@ -354,7 +363,10 @@ impl P {
             e = node(ExprKind::Neg(Box::new(e)), span);
         }
         loop {
-            let op = if self.eat_cmd("cdot") || self.eat_cmd("times") || self.eat_ch('*') {
+            let op = if self.is_cmd("times") {
+                e = self.times(e, in_integral)?;
+                continue;
+            } else if self.eat_cmd("cdot") || self.eat_ch('*') {
                 BinOp::Mul
             } else if self.eat_ch('/') {
                 BinOp::Div
@@ -380,7 +392,10 @@ impl P {
     fn factor(&mut self) -> Result<Expr, SyntaxError> {
         self.nest()?;
         let start = self.span();
-        let base = self.primary()?;
+        let base = match self.slash_leibniz()? {
+            Some(d) => d,
+            None => self.primary()?,
+        };
         let mut e = self.power(base)?;
         // The factor covers everything it consumed, closing braces and brackets too.
         e.span = start.to(self.last_span());
@@ -396,7 +411,7 @@ impl P {
         // e^{x} is exp(x).
         if base.kind == ExprKind::Sym("e".into()) {
             let span = base.span.to(exp.span);
-            return Ok(node(ExprKind::Call(Func::Exp, vec![exp]), span));
+            return Ok(node(ExprKind::Call(Func::Exp, vec![exp]), span).read_as(Reading::EulerE));
         }
         Ok(bin(BinOp::Pow, base, exp))
     }
@@ -578,8 +593,12 @@ impl P {
             "vartheta" => self.symbol("theta".into(), span),
             "varrho" => self.symbol("rho".into(), span),
             "ell" => self.symbol("l".into(), span),
+            "Delta" | "delta" => self.increment(c, span),
             g if GREEK.contains(&g) => self.symbol(g.to_string(), span),
             "frac" | "dfrac" | "tfrac" => {
+                if let Some(d) = self.leibniz(span)? {
+                    return Ok(d);
+                }
                 self.split_digit();
                 let a = self.arg()?;
                 self.split_digit();
@@ -862,20 +881,9 @@ impl P {
         })
     }
 
-    /// The argument of `\sin x^2` or `\sin 2\theta`: the next factor with its power,
-    /// and a number together with the one symbol after it.
+    /// The argument of an unbraced function: see [`P::argument_run`].
     fn unbraced_argument(&mut self) -> Result<Expr, SyntaxError> {
-        if let Some(Tok::Num(_)) = self.peek() {
-            let n = self.factor()?;
-            if matches!(self.peek(), Some(Tok::Letter(_)))
-                || matches!(self.peek(), Some(Tok::Cmd(c)) if GREEK.contains(&c.as_str()))
-            {
-                let x = self.factor()?;
-                return Ok(bin(BinOp::Mul, n, x));
-            }
-            return Ok(n);
-        }
-        self.factor()
+        self.argument_run()
     }
 }
 

@@ -39,7 +39,7 @@ fn juxtaposed_letters_multiply_and_subscripts_make_one_symbol() {
     same(r"\theta_0", "theta_0");
     same("x_1 + x_{12}", "x_1 + x_12");
     same("-x^2", "-x^2");
-    same(r"a \cdot b \times c", "a*b*c");
+    same(r"a \cdot b \times 2", "a*b*2");
     same(r"m\,g\;\cos\beta", "m*g*cos(beta)");
 }
 
@@ -182,4 +182,199 @@ fn equations_from_the_handout() {
     same(r"I_G + m d^2", "I_G + m*d^2");
     same(r"\frac{1}{2} m R^2", "1/2*m*R^2");
     same(r"\frac{2}{3} g \sin\beta", "2/3*g*sin(beta)");
+}
+
+fn refused(s: &str) -> String {
+    match parse_latex_chain(s, 0, &ParseOptions::default()) {
+        Ok(c) => panic!("{s} should be refused, read as {:?}", bare(&c.first)),
+        Err(e) => e.message,
+    }
+}
+
+/// The tree with its reading marks, spans dropped.
+fn marked(s: &str) -> Expr {
+    fn strip(e: &Expr) -> Expr {
+        let kind = match &e.kind {
+            ExprKind::Neg(a) => ExprKind::Neg(Box::new(strip(a))),
+            ExprKind::Bin(op, a, b) => ExprKind::Bin(*op, Box::new(strip(a)), Box::new(strip(b))),
+            ExprKind::Call(f, args) => ExprKind::Call(*f, args.iter().map(strip).collect()),
+            k => k.clone(),
+        };
+        Expr::new(kind, Span::default()).read_as(e.reading)
+    }
+    strip(
+        &parse_latex_expr(s, 0, &ParseOptions::default())
+            .unwrap_or_else(|e| panic!("{s}: {}", e.message)),
+    )
+}
+
+fn leibniz(of: &str) -> Expr {
+    ours(of).read_as(Reading::Leibniz)
+}
+
+#[test]
+fn leibniz_notation_with_respect_to_time_is_a_prime() {
+    for (tex, plain) in [
+        (r"\frac{dx}{dt}", "x'"),
+        (r"\frac{d x}{d t}", "x'"),
+        (r"\frac{d\theta}{dt}", "theta'"),
+        (r"\frac{dx_B}{dt}", "x_B'"),
+        (r"\frac{d^2x}{dt^2}", "x''"),
+        (r"\frac{d^{2} x}{d t^{2}}", "x''"),
+        (r"\frac{\mathrm{d}x}{\mathrm{d}t}", "x'"),
+        (r"\frac{\mathrm{d}^2\theta}{\mathrm{d}t^2}", "theta''"),
+        (r"\frac{\text{d}v}{\text{d}t}", "v'"),
+        (r"\frac{\operatorname{d}v}{\operatorname{d}t}", "v'"),
+        (r"\dfrac{dv}{dt}", "v'"),
+        (r"\frac{d\dot x}{dt}", "x''"),
+        (r"m\frac{dv}{dt}", "m*v'"),
+        (r"\frac{d}{dt} x", "x'"),
+        (r"\frac{d}{dt}\theta", "theta'"),
+    ] {
+        same(tex, plain);
+    }
+    // Never the quotient of products: `\frac{dx}{dt}` is not x/t.
+    assert_ne!(latex(r"\frac{dx}{dt}"), ours("(d*x)/(d*t)"));
+}
+
+#[test]
+fn leibniz_operators_differentiate_what_follows() {
+    assert_eq!(marked(r"\frac{d}{dt}(m v)"), leibniz("diff(m*v, t)"));
+    assert_eq!(
+        marked(r"\frac{d}{dt}\left(\frac{1}{2} m v^2\right)"),
+        leibniz("diff(1/2*m*v^2, t)")
+    );
+    assert_eq!(
+        marked(r"\frac{\mathrm{d}}{\mathrm{d}t}[x y]"),
+        leibniz("diff(x*y, t)")
+    );
+    assert_eq!(marked(r"\frac{d}{dt} m v"), leibniz("diff(m*v, t)"));
+    assert_eq!(marked(r"\frac{d(mv)}{dt}"), leibniz("diff(m*v, t)"));
+    assert_eq!(marked(r"\frac{d^2}{dt^2}(x y)"), leibniz("diff(x*y, t, 2)"));
+    // The operand ends at the next operator.
+    let sum = marked(r"\frac{d}{dt}(m v) + F");
+    let ExprKind::Bin(BinOp::Add, d, _) = &sum.kind else {
+        panic!("{sum:?}")
+    };
+    assert_eq!(**d, leibniz("diff(m*v, t)"));
+}
+
+#[test]
+fn leibniz_notation_with_respect_to_another_variable_is_diff() {
+    assert_eq!(marked(r"\frac{dy}{dx}"), leibniz("diff(y, x)"));
+    assert_eq!(marked(r"\frac{dm}{dx}"), leibniz("diff(m, x)"));
+    assert_eq!(marked(r"\frac{d^2y}{dx^2}"), leibniz("diff(y, x, 2)"));
+    assert_eq!(
+        marked(r"\frac{d}{d\theta}\sin\theta"),
+        leibniz("diff(sin(theta), theta)")
+    );
+    assert_eq!(marked(r"\frac{dt}{dt}"), leibniz("diff(t, t)"));
+    // Plain `diff` in rigor's own syntax carries no mark.
+    assert_eq!(ours("diff(y, x)").reading, Reading::AsWritten);
+}
+
+#[test]
+fn a_d_that_is_not_a_differential_stays_a_quotient() {
+    same(r"\frac{d}{2}", "d/2");
+    same(r"\frac{d^2}{4}", "d^2/4");
+    same(r"\frac{\pi d^2}{4}", "(pi*d^2)/4");
+    same(r"\frac{2}{d}", "2/d");
+    same(r"\frac{F}{d t}", "F/(d*t)");
+    same(r"\frac{d_1}{dt}", "d_1/(d*t)");
+    same(r"\frac{d}{d}", "d/d");
+    same(r"\frac{dx}{2}", "(d*x)/2");
+    same(r"\frac{d + x}{dt}", "(d + x)/(d*t)");
+    // Orders that disagree, or nothing to differentiate, are errors, never products.
+    refused(r"\frac{d^2x}{dt} = a");
+    refused(r"\frac{d}{dt} = a");
+    refused(r"\frac{d^{12}x}{dt^{12}} = a");
+}
+
+#[test]
+fn increments_are_one_symbol() {
+    same(r"\Delta x", "Delta_x");
+    same(r"\delta x", "delta_x");
+    same(r"\Delta\theta", "Delta_theta");
+    same(r"\Delta x_B", "Delta_x_B");
+    same(r"\frac{\Delta x}{\Delta t}", "Delta_x/Delta_t");
+    same(r"\Delta x^2", "Delta_x^2");
+    same(r"F\Delta t", "F*Delta_t");
+    // A lone Delta or delta is the symbol itself.
+    same(r"\delta", "delta");
+    same(r"k\delta^2", "k*delta^2");
+    same(r"\Delta_1 + 1", "Delta_1 + 1");
+    assert_ne!(latex(r"\Delta x"), ours("Delta*x"));
+    refused(r"\Delta(m v) = F");
+    refused(r"\Delta\dot x = a");
+}
+
+#[test]
+fn euler_e_is_marked_for_the_checker() {
+    assert_eq!(marked("e^{x}"), ours("exp(x)").read_as(Reading::EulerE));
+    assert_eq!(marked(r"\exp(x)").reading, Reading::AsWritten);
+    same("e", "e");
+    same(r"e \cdot e", "e*e");
+}
+
+#[test]
+fn a_function_takes_the_factors_juxtaposed_after_it() {
+    same(r"\cos\omega t", "cos(omega*t)");
+    same(r"A \cos\omega t", "A*cos(omega*t)");
+    same(r"\sin 2\pi f t", "sin(2*pi*f*t)");
+    same(r"\cos\omega_n t", "cos(omega_n*t)");
+    same(r"\sin k x^2", "sin(k*x^2)");
+    same(r"\cos^2\omega t", "cos(omega*t)^2");
+    // ... up to an operator, a function, a fraction, a dotted symbol, a bracket, a
+    // differential or an explicit space.
+    same(r"\cos\omega t + 1", "cos(omega*t) + 1");
+    same(r"\sin\theta\cos\theta", "sin(theta)*cos(theta)");
+    same(r"\sin\theta\frac{a}{b}", "sin(theta)*(a/b)");
+    same(r"\sin\theta\dot\theta", "sin(theta)*theta'");
+    same(r"\sin\theta(1 - x)", "sin(theta)*(1 - x)");
+    same(r"\cos\omega\,t", "cos(omega)*t");
+    same(r"\cos\omega\; t", "cos(omega)*t");
+    same(r"\cos\omega\quad t", "cos(omega)*t");
+    same(r"\cos\omega~t", "cos(omega)*t");
+    same(r"\cos\omega \cdot t", "cos(omega)*t");
+    same(r"\cos\omega_d t e^{-k t}", "cos(omega_d*t)*exp(-k*t)");
+    same(r"\int_0^T \cos\omega t\,dt", "int(cos(omega*t), t, 0, T)");
+    same(r"\int_0^T \cos\omega t dt", "int(cos(omega*t), t, 0, T)");
+    assert_ne!(latex(r"\cos\omega t"), ours("cos(omega)*t"));
+}
+
+#[test]
+fn times_between_two_quantities_is_a_cross_product() {
+    same(r"3 \times 10^{4}", "3*10^4");
+    same(r"2 \times m", "2*m");
+    same(r"m \times 2", "m*2");
+    same(r"\frac{1}{2} \times m v^2", "1/2*(m*v^2)");
+    same(r"\pi \times r^2", "pi*r^2");
+    for s in [
+        r"\omega \times r = - r \times \omega",
+        r"a \times b = c",
+        r"r \times F = M",
+        r"\omega \times 2 r = 0",
+        r"2 m \times v = 0",
+    ] {
+        let m = refused(s);
+        assert!(m.contains("cross product"), "{s}: {m}");
+    }
+}
+
+#[test]
+fn leibniz_notation_with_a_slash() {
+    same("dx/dt", "x'");
+    same(r"m\,dv/dt", "m*v'");
+    same(r"\mathrm{d}\theta/\mathrm{d}t", "theta'");
+    same("d^2x/dt^2", "x''");
+    same("dx/dt + 1", "x' + 1");
+    assert_eq!(marked("dy/dx"), leibniz("diff(y, x)"));
+    // Not a differential: a quotient, as written.
+    same("d/2", "d/2");
+    same("dx/2", "d*x/2");
+    same("d/2", "d/2");
+    assert_eq!(marked("d/dt (m v)"), leibniz("diff(m*v, t)"));
+    same(r"d/dt\,x", "x'");
+    refused("d/dt = a");
+    refused("d^2x/dt = a");
 }

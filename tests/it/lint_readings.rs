@@ -1,0 +1,111 @@
+//! `rigor lint` reads LaTeX as a physicist means it (issue 27, item 4): Leibniz notation
+//! is a derivative, `\Delta x` one symbol, a declared `e` that symbol, `\cos\omega t`
+//! the cosine of a product, `\times` between quantities a cross product. Each note in
+//! `tests/lint/readings_*.md` has one chain per reading; each chain's verdict is
+//! asserted at its line.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::process::Command;
+
+/// Each chain's line and verdict (`verified`, `FAILED`, `needs context`), and the exit
+/// status of `rigor lint` on the note.
+fn verdicts(note: &str) -> (BTreeMap<usize, String>, i32, String) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let out = Command::new(env!("CARGO_BIN_EXE_rigor"))
+        .args(["lint", note])
+        .current_dir(root)
+        .output()
+        .expect("rigor runs");
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    let mut map = BTreeMap::new();
+    for line in text.lines() {
+        let Some(rest) = line.strip_prefix(note).and_then(|r| r.strip_prefix(':')) else {
+            continue;
+        };
+        let mut parts = rest.splitn(3, ':');
+        let (Some(l), Some(_col), Some(verdict)) = (parts.next(), parts.next(), parts.next())
+        else {
+            continue;
+        };
+        let verdict = verdict.trim_start();
+        let kind = ["verified", "FAILED", "needs context"]
+            .into_iter()
+            .find(|k| verdict.starts_with(k))
+            .unwrap_or("?");
+        if let Ok(l) = l.parse() {
+            map.insert(l, kind.to_string());
+        }
+    }
+    (map, out.status.code().unwrap_or(-1), text)
+}
+
+fn expect(note: &str, want: &[(usize, &str)], code: i32) {
+    let (got, status, text) = verdicts(note);
+    for (line, verdict) in want {
+        assert_eq!(
+            got.get(line).map(String::as_str),
+            Some(*verdict),
+            "{note}:{line} should be {verdict}:\n{text}"
+        );
+    }
+    assert_eq!(got.len(), want.len(), "one verdict per chain:\n{text}");
+    assert_eq!(status, code, "{text}");
+}
+
+#[test]
+fn leibniz_notation_is_a_derivative_never_a_product() {
+    expect(
+        "tests/lint/readings_leibniz.md",
+        &[
+            // F = m dv/dt defines F; F t = m v does not follow (d does not cancel).
+            (5, "verified"),
+            (7, "needs context"),
+            // dx/dt = x/t and the \mathrm{d} form: a velocity is not x/t.
+            (11, "needs context"),
+            (15, "needs context"),
+            // \Delta s/\Delta\tau is a ratio of increments, not s/tau.
+            (19, "needs context"),
+            // The true one: theta-dot is d theta/dt.
+            (23, "verified"),
+            // m under d/dt is taken as changing: m u-dot alone is not shown.
+            (30, "needs context"),
+            (34, "needs context"),
+            // dq/dp of an unknown function of p: never q/p.
+            (38, "needs context"),
+        ],
+        0,
+    );
+}
+
+#[test]
+fn a_declared_e_is_that_symbol() {
+    expect(
+        "tests/lint/readings_euler_e.md",
+        &[(5, "verified"), (7, "FAILED"), (9, "verified")],
+        1,
+    );
+}
+
+#[test]
+fn a_function_takes_the_factors_juxtaposed_after_it() {
+    expect(
+        "tests/lint/readings_functions.md",
+        &[
+            (5, "FAILED"),
+            (9, "verified"),
+            (13, "verified"),
+            (17, "verified"),
+        ],
+        1,
+    );
+}
+
+#[test]
+fn times_between_quantities_is_a_cross_product_and_needs_context() {
+    expect(
+        "tests/lint/readings_cross.md",
+        &[(5, "needs context"), (9, "verified"), (11, "verified")],
+        0,
+    );
+}
