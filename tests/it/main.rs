@@ -18,6 +18,7 @@ mod props;
 mod readme;
 mod repository;
 mod soundness;
+mod views;
 mod web;
 mod workloads;
 
@@ -62,4 +63,3 @@ pub fn ticking_clock() -> std::time::Duration {
         std::time::Duration::from_micros(t.get())
     })
 }
-
