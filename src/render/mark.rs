@@ -12,6 +12,7 @@ fn outcome(o: &Outcome) -> String {
         Outcome::Wrong => "wrong".into(),
         Outcome::Missing => "missing".into(),
         Outcome::Undecided(why) => format!("undecided ({why})"),
+        Outcome::NotCredited(why) => format!("not credited ({why})"),
     }
 }
 
@@ -156,6 +157,9 @@ fn hint(kind: &str) -> &'static str {
         "undeclared" => "a name is used before it is declared (a typo?)",
         "syntax" => "rigor could not read this line",
         "units" => "the two sides are not in the same units",
+        "false_fact" => {
+            "this fact is false (or your facts contradict each other): anything would follow from it, so nothing that rests on it counts"
+        }
         _ => "rigor could not decide this step",
     }
 }
@@ -214,6 +218,9 @@ pub fn feedback(r: &Row, reveal: Option<&str>) -> String {
             Outcome::Wrong => "not what it should be".to_string(),
             Outcome::Missing => "not found in your work".to_string(),
             Outcome::Undecided(_) => "could not be compared".to_string(),
+            Outcome::NotCredited(_) => {
+                "not credited: your work reaches it only through facts that are false or contradict each other".to_string()
+            }
         };
         out.push_str(&format!("- `{}`: {said}\n", e.lhs.replace('`', "'")));
     }

@@ -218,3 +218,70 @@ fn the_guard_drops_a_counterexample_outside_the_declarations() {
     assert!(guard::respects(&signs, &point(-2.0)).is_err());
     assert!(guard::respects(&signs, &point(0.0)).is_err());
 }
+
+/// `rigor mark ARGS` against the class's reference, with no time budget.
+fn mark(args: &[&str]) -> crate::cli::Run {
+    let mut all = vec!["--timeout", "0", "mark", "--budget", "0"];
+    all.extend(["--reference", "tests/mark/reference.deriv"]);
+    all.extend(args);
+    run(&all)
+}
+
+#[test]
+fn a_false_given_is_the_same_mistake_in_check_and_in_mark() {
+    let dir = crate::cli::scratch("views-false-given");
+    let sub = dir.join("false_given.deriv");
+    // The reference's derivation with a false given; [xdd] rests on it, [F] does not.
+    std::fs::write(
+        &sub,
+        "symbols m g R > 0\nsymbols beta\ntime x theta\nunknowns F\n\
+         given [bad] 0 = 1\n\
+         given [Fx] F - m g sin(beta) = m x''\n\
+         given [MG] F R = -(m R^2/2) theta''\n\
+         constraint [roll] x = R theta\n\
+         claim [xdd] x'' = -2/3 g sin(beta) by [bad]\n\
+         claim [F] F = m g sin(beta)/3 by [Fx], [MG], [roll]\n",
+    )
+    .expect("write");
+    let path = sub.to_str().expect("path");
+    // check: bad input, E0306.
+    let r = run(&["check", path]);
+    assert_eq!(code(&r), 2, "{}", show(&r));
+    assert!(
+        r.stderr.contains("error[E0306]: this fact is false"),
+        "{}",
+        show(&r)
+    );
+    // mark: the same mistake by name, never "undecided"; the result that rests on it
+    // earns nothing, the one that does not still counts.
+    let r = mark(&[path]);
+    assert_eq!(code(&r), 0, "{}", show(&r));
+    assert!(
+        r.stdout
+            .contains("first mistake: line 5 (false_fact): this fact is false"),
+        "{}",
+        show(&r)
+    );
+    assert!(!r.stdout.contains("undecided"), "{}", show(&r));
+    assert!(
+        r.stdout.contains("[xdd] x'': not credited ("),
+        "{}",
+        show(&r)
+    );
+    assert!(r.stdout.contains("[F] F: right"), "{}", show(&r));
+    assert!(r.stdout.contains("results 1/2 right"), "{}", show(&r));
+    let r = mark(&[path, "--format", "csv"]);
+    assert!(r.stdout.contains(",5,false_fact,1,2\n"), "{}", show(&r));
+    let r = mark(&[path, "--format", "json"]);
+    let v: serde_json::Value = serde_json::from_str(r.stdout.trim()).expect("JSON");
+    assert_eq!(v["first_failure"]["kind"], "false_fact", "{v}");
+    assert_eq!(v["results_correct"], 1, "{v}");
+    // The feedback says what it is, not "could not decide".
+    let fb = dir.join("feedback");
+    let r = mark(&[path, "--feedback", fb.to_str().expect("path")]);
+    assert_eq!(code(&r), 0, "{}", show(&r));
+    let text = std::fs::read_to_string(fb.join("000-false_given.md")).expect("feedback");
+    assert!(text.contains("Hint: this fact is false"), "{text}");
+    assert!(!text.contains("could not decide"), "{text}");
+    assert!(text.contains("`x''`: not credited"), "{text}");
+}
