@@ -67,20 +67,34 @@ pub fn human(rows: &[Row]) -> String {
     out
 }
 
-/// The class summary table.
+/// Untrusted text for a cell of a Markdown table: no `<tag>`, link, code span or entity
+/// in it stays live, and no `|` splits the cell (`_` and `*` are left as written).
+fn cell(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in clean(s).chars() {
+        if matches!(c, '\\' | '<' | '>' | '|' | '[' | ']' | '`' | '&') {
+            out.push('\\');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// The class summary table (Markdown): file names and reasons are untrusted text,
+/// escaped as [`cell`]s.
 pub fn summary(rows: &[Row]) -> String {
     let mut out =
         String::from("| file | steps verified | first failure | results |\n|---|---|---|---|\n");
     for r in rows {
         let (right, all) = r.results_score();
         let first = match (&r.unreadable, &r.first_failure) {
-            (Some(why), _) => format!("not marked: {}", clean(why)),
+            (Some(why), _) => format!("not marked: {}", cell(why)),
             (None, Some((line, kind, _))) => format!("line {line} ({kind})"),
             (None, None) => "none".into(),
         };
         out.push_str(&format!(
             "| {} | {}/{} | {first} | {right}/{all} |\n",
-            clean(&r.file).replace('|', "\\|"),
+            cell(&r.file),
             r.steps.0,
             r.steps.1
         ));

@@ -285,3 +285,26 @@ fn a_false_given_is_the_same_mistake_in_check_and_in_mark() {
     assert!(!text.contains("could not decide"), "{text}");
     assert!(text.contains("`x''`: not credited"), "{text}");
 }
+
+#[test]
+fn the_class_summary_keeps_a_hostile_file_name_as_text() {
+    let dir = crate::cli::scratch("views-hostile-name");
+    let sub = dir.join("<img src=x onerror=alert(1)> [a](b) `c` |d|.deriv");
+    std::fs::write(&sub, "symbols m > 0\nclaim m = m\n").expect("write");
+    let r = mark(&[dir.to_str().expect("path"), "--summary"]);
+    assert_eq!(code(&r), 0, "{}", show(&r));
+    let row = r
+        .stdout
+        .lines()
+        .find(|l| l.contains("onerror"))
+        .unwrap_or_else(|| panic!("{}", show(&r)));
+    assert!(
+        row.contains("\\<img src=x onerror=alert(1)\\> \\[a\\](b) \\`c\\` \\|d\\|.deriv |"),
+        "{row}"
+    );
+    assert_eq!(
+        row.matches(" | ").count() - row.matches("\\| ").count(),
+        3,
+        "{row}"
+    );
+}

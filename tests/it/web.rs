@@ -380,10 +380,16 @@ fn an_empty_document_has_nothing_to_check_and_verifies_nothing() {
         assert!(!status.contains("all steps verified"), "{text:?}: {status}");
     }
     // One step, verified: said as it is.
-    let v = drive(&format!("{}{}", site(), link("symbols x\nclaim x + x = 2 x\n")), &[]);
+    let v = drive(
+        &format!("{}{}", site(), link("symbols x\nclaim x + x = 2 x\n")),
+        &[],
+    );
     assert_eq!(v["status"], "ok", "{v}");
     assert!(
-        v["statusText"].as_str().unwrap_or("").starts_with("the one step verified"),
+        v["statusText"]
+            .as_str()
+            .unwrap_or("")
+            .starts_with("the one step verified"),
         "{v}"
     );
 }
@@ -415,11 +421,19 @@ fn a_large_document_is_shown_in_slices_and_the_page_stays_responsive() {
     // The preview is cut, and says so.
     assert_eq!(v["cuts"], serde_json::json!(["blocks"]), "{}", short(&v));
     let preview = v["preview"].as_str().unwrap_or("");
-    assert!(preview.contains("The worked solution is cut here"), "{}", short(&v));
+    assert!(
+        preview.contains("The worked solution is cut here"),
+        "{}",
+        short(&v)
+    );
     // The page answered every poll promptly while it checked and built itself (the
     // worker checks; the page is built in slices).
     let slowest = v["slowestPoll"].as_u64().unwrap_or(u64::MAX);
-    assert!(slowest < 2_000, "the page was blocked for {slowest} ms: {}", short(&v));
+    assert!(
+        slowest < 2_000,
+        "the page was blocked for {slowest} ms: {}",
+        short(&v)
+    );
 }
 
 /// A snapshot without its long parts, for failure messages.
