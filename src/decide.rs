@@ -63,6 +63,64 @@ pub enum Verdict {
     },
 }
 
+/// `v` with its counterexample re-checked by `stands` (the guard, on the values as
+/// `f64`s) before anyone prints it: a counterexample that does not stand is dropped, and
+/// then "not equal" needs the exact argument, else the answer is undecided.
+pub fn guarded(
+    v: Verdict,
+    stands: impl Fn(&HashMap<String, f64>) -> Result<(), String>,
+) -> Verdict {
+    let Verdict::NotEqual {
+        difference,
+        exact,
+        counterexample: Some(c),
+        diagnosis,
+    } = v
+    else {
+        return v;
+    };
+    if c.values.is_empty() {
+        return Verdict::NotEqual {
+            difference,
+            exact,
+            counterexample: Some(c),
+            diagnosis,
+        };
+    }
+    let point: Option<HashMap<String, f64>> = c
+        .values
+        .iter()
+        .map(|(n, q)| Some((n.clone(), q.to_f64()?)))
+        .collect();
+    let why = match point.map(|p| stands(&p)) {
+        Some(Ok(())) => {
+            return Verdict::NotEqual {
+                difference,
+                exact,
+                counterexample: Some(c),
+                diagnosis,
+            }
+        }
+        Some(Err(why)) => why,
+        None => "its values are out of floating-point range".into(),
+    };
+    if exact {
+        return Verdict::NotEqual {
+            difference,
+            exact,
+            counterexample: None,
+            diagnosis,
+        };
+    }
+    Verdict::Undecided {
+        why: format!(
+            "the difference {} is not zero in normal form, but the one counterexample found ({}) is not confirmed: {why}",
+            plain(&difference),
+            c.assignment()
+        ),
+    }
+}
+
 /// Decides `a = b` under the declared signs.
 pub fn decide(a: &Rat, b: &Rat, s: &Assumptions) -> Verdict {
     decide_where(a, b, s, &[])
@@ -112,7 +170,12 @@ fn decide_with(
         Some(r) => r,
         None => d,
     };
-    let exact = independent(&d);
+    // A nonzero function of independent quantities is nonzero somewhere in the region
+    // the declarations allow only when that region has interior.
+    let mut syms = Vec::new();
+    symbols_in(&d, &mut syms);
+    let interior = crate::normal::ranges::have_interior(s, &syms);
+    let exact = independent(&d) && interior;
     if exact && !explain {
         return Verdict::NotEqual {
             difference: d,
@@ -122,6 +185,14 @@ fn decide_with(
         };
     }
     let counterexample = find_counterexample_where(a, b, s, defined);
+    if !exact && counterexample.is_none() && !interior {
+        return Verdict::Undecided {
+            why: format!(
+                "the difference {} is not zero in normal form, but the declared intervals may leave no room for it to be nonzero (an interval of one point, or bounds rigor cannot compare), and no checked counterexample was found",
+                plain(&d)
+            ),
+        };
+    }
     if !exact && counterexample.is_none() {
         let dependent: Vec<String> = d
             .atoms()

@@ -276,7 +276,13 @@ impl Checker<'_, '_> {
             }
             return with_notes(d, extra);
         }
-        match crate::decide::decide_where(&ra, &rb, &self.env.signs, defined) {
+        // The guard re-checks that a counterexample satisfies every declaration as
+        // written before it is printed (then, below, that the sides differ there).
+        let verdict = crate::decide::guarded(
+            crate::decide::decide_where(&ra, &rb, &self.env.signs, defined),
+            |point| crate::guard::respects(&self.guard_env, point),
+        );
+        match verdict {
             Verdict::NotEqual {
                 diagnosis,
                 counterexample,

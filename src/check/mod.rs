@@ -41,3 +41,4 @@ mod walk;
 pub(crate) use entry::normalise;
 pub use entry::{check_source, Exports, MemoryResolver, Options, Resolver, Source};
 pub use report::{cite, ClaimReport, FileReport, Justification, LinkReport, Status};
+pub use signs::interval;

@@ -34,6 +34,50 @@ pub(super) fn respects_sign(
     }
 }
 
+/// The sign and the interval that `symbols lo < x < hi` (`<=` where a bound is not
+/// strict) declares, as `check` reads it; the message says why the interval is refused.
+/// `lo` and `hi` are the bounds with whether each is excluded.
+pub fn interval(
+    (l, lo_strict): (Rat, bool),
+    (h, hi_strict): (Rat, bool),
+    signs: &crate::normal::Assumptions,
+) -> Result<(Sign, crate::normal::Range), String> {
+    let (sl, sh) = (sign_of(&l, signs), sign_of(&h, signs));
+    let empty = l.sub(&h).is_ok_and(|d| {
+        let s = sign_of(&d, signs);
+        s == Sign::Pos || (s.is_nonneg() && (lo_strict || hi_strict))
+    });
+    if empty {
+        return Err(format!(
+            "the interval from {} to {} is empty",
+            plain(&l),
+            plain(&h)
+        ));
+    }
+    let above = match sl {
+        Sign::Pos => Sign::Pos,
+        Sign::NonNeg | Sign::Zero if lo_strict => Sign::Pos,
+        Sign::NonNeg | Sign::Zero => Sign::NonNeg,
+        _ => Sign::Unknown,
+    };
+    let below = match sh {
+        Sign::Neg => Sign::Neg,
+        Sign::NonPos | Sign::Zero if hi_strict => Sign::Neg,
+        Sign::NonPos | Sign::Zero => Sign::NonPos,
+        _ => Sign::Unknown,
+    };
+    let sign = if above != Sign::Unknown { above } else { below };
+    Ok((
+        sign,
+        crate::normal::Range {
+            lo: l,
+            lo_strict,
+            hi: h,
+            hi_strict,
+        },
+    ))
+}
+
 pub(super) fn describe(s: Sign) -> &'static str {
     match s {
         Sign::Zero => "zero",

@@ -292,6 +292,9 @@ impl<'l, 'o> Checker<'l, 'o> {
                 for n in names {
                     if self.declare(&n.name, n.span, Decl::Symbol) {
                         self.env.signs.set(atom::sym(&n.name), sign_of_decl(*sign));
+                        self.guard_env
+                            .domains
+                            .push((n.name.clone(), crate::guard::Domain::Sign(*sign)));
                     }
                 }
             }
@@ -557,45 +560,32 @@ impl<'l, 'o> Checker<'l, 'o> {
         let (Some(l), Some(h)) = (self.lower(lo.0, &mut divs), self.lower(hi.0, &mut divs)) else {
             return;
         };
-        let signs = &self.env.signs;
-        let (sl, sh) = (sign_of(&l, signs), sign_of(&h, signs));
-        let empty = l.sub(&h).is_ok_and(|d| {
-            let s = sign_of(&d, signs);
-            s == Sign::Pos || (s.is_nonneg() && (lo.1 || hi.1))
-        });
-        if empty {
-            self.error(
-                "E0203",
-                format!("the interval from {} to {} is empty", plain(&l), plain(&h)),
-                lo.0.span.to(hi.0.span),
-                "the lower bound must be below the upper bound",
-            );
-            return;
-        }
-        let above = match sl {
-            Sign::Pos => Sign::Pos,
-            Sign::NonNeg | Sign::Zero if lo.1 => Sign::Pos,
-            Sign::NonNeg | Sign::Zero => Sign::NonNeg,
-            _ => Sign::Unknown,
-        };
-        let below = match sh {
-            Sign::Neg => Sign::Neg,
-            Sign::NonPos | Sign::Zero if hi.1 => Sign::Neg,
-            Sign::NonPos | Sign::Zero => Sign::NonPos,
-            _ => Sign::Unknown,
-        };
-        let sign = if above != Sign::Unknown { above } else { below };
-        let range = crate::normal::Range {
-            lo: l,
-            lo_strict: lo.1,
-            hi: h,
-            hi_strict: hi.1,
+        let (sign, range) = match super::signs::interval((l, lo.1), (h, hi.1), &self.env.signs) {
+            Ok(x) => x,
+            Err(why) => {
+                self.error(
+                    "E0203",
+                    why,
+                    lo.0.span.to(hi.0.span),
+                    "the lower bound must be below the upper bound",
+                );
+                return;
+            }
         };
         for n in names {
             if self.declare(&n.name, n.span, Decl::Symbol) {
                 let x = atom::sym(&n.name);
                 self.env.signs.set(x, sign);
                 self.env.signs.set_range(x, Some(range.clone()));
+                self.guard_env.domains.push((
+                    n.name.clone(),
+                    crate::guard::Domain::Range {
+                        lo: lo.0.clone(),
+                        lo_strict: lo.1,
+                        hi: hi.0.clone(),
+                        hi_strict: hi.1,
+                    },
+                ));
             }
         }
     }

@@ -52,28 +52,111 @@ fn report_lower(e: &LowerError, what: &str, src: &str) {
     err!("{}", diag::render(&d, what, src));
 }
 
-/// Builds the environment of `--assume` and `--body` options.
-fn options_env(assume: &[String], bodies: &[String], opts: &ParseOptions) -> Result<Env, ()> {
+/// The environment of `--assume` and `--body` options: the exact engine's, and the
+/// guard's (the declarations and bodies as written).
+type OptionsEnv = (Env, rigor::guard::GuardEnv);
+
+/// Builds the environment of `--assume` and `--body` options. An `--assume` means what
+/// the same text means after `symbols` in a file: signs (`R > 0`) and intervals
+/// (`0 < beta < pi/2`, whose bounds may use only symbols no later `--assume` declares).
+fn options_env(
+    assume: &[String],
+    bodies: &[String],
+    opts: &ParseOptions,
+) -> Result<OptionsEnv, ()> {
+    use rigor::guard::Domain;
     let mut env = Env::default();
+    let mut genv = rigor::guard::GuardEnv::default();
+    // The names each `--assume` declares, and the symbols each one's bounds use.
+    let mut declared: Vec<Vec<String>> = Vec::new();
+    let mut bounds: Vec<Vec<String>> = Vec::new();
     for a in assume {
         let src = format!("symbols {a}");
-        match parse_file(&src, opts) {
-            Ok(f) => {
-                for item in f.items {
-                    if let Item::Stmt(s) = item {
-                        if let StmtKind::Symbols { names, sign } = s.kind {
-                            for n in names {
-                                env.signs.set(
-                                    rigor::normal::atom::sym(&n.name),
-                                    rigor::lower::sign_of_decl(sign),
-                                );
-                            }
-                        }
+        let f = parse_file(&src, opts).map_err(|e| report_syntax(&e, "--assume", &src))?;
+        let (mut names_here, mut used_here) = (Vec::new(), Vec::new());
+        for item in f.items {
+            let Item::Stmt(s) = item else { continue };
+            match s.kind {
+                StmtKind::Symbols { names, sign } => {
+                    for n in names {
+                        env.signs.set(
+                            rigor::normal::atom::sym(&n.name),
+                            rigor::lower::sign_of_decl(sign),
+                        );
+                        genv.domains.push((n.name.clone(), Domain::Sign(sign)));
+                        names_here.push(n.name);
                     }
                 }
+                StmtKind::Range {
+                    names,
+                    lo,
+                    lo_strict,
+                    hi,
+                    hi_strict,
+                } => {
+                    let bound = |e: &rigor::syntax::ast::Expr| -> Result<rigor::normal::Rat, ()> {
+                        let mut lw = Lowerer::new(&env);
+                        lw.lower(e).map_err(|e| report_lower(&e, "--assume", &src))
+                    };
+                    let (l, h) = (bound(&lo)?, bound(&hi)?);
+                    let (sign, range) = rigor::check::interval(
+                        (l.clone(), lo_strict),
+                        (h.clone(), hi_strict),
+                        &env.signs,
+                    )
+                    .map_err(|why| {
+                        let d = Diagnostic::error(
+                            "E0203",
+                            why,
+                            lo.span.to(hi.span),
+                            "the lower bound must be below the upper bound",
+                        );
+                        err!("{}", diag::render(&d, "--assume", &src));
+                    })?;
+                    let mut used = Vec::new();
+                    rigor::decide::symbols_in(&l, &mut used);
+                    rigor::decide::symbols_in(&h, &mut used);
+                    used_here.extend(used.into_iter().filter_map(rigor::normal::atom::sym_name));
+                    for n in names {
+                        let x = rigor::normal::atom::sym(&n.name);
+                        env.signs.set(x, sign);
+                        env.signs.set_range(x, Some(range.clone()));
+                        genv.domains.push((
+                            n.name.clone(),
+                            Domain::Range {
+                                lo: lo.clone(),
+                                lo_strict,
+                                hi: hi.clone(),
+                                hi_strict,
+                            },
+                        ));
+                        names_here.push(n.name);
+                    }
+                }
+                _ => {}
             }
-            Err(e) => {
-                report_syntax(&e, "--assume", &src);
+        }
+        declared.push(names_here);
+        bounds.push(used_here);
+    }
+    // A name assumed twice, or a bound that uses a name assumed in the same or a later
+    // `--assume`, could describe an empty region (`0 < a < b`, `0 < b < a`): refused.
+    for (k, names) in declared.iter().enumerate() {
+        for n in names {
+            let again = declared[k + 1..].iter().any(|l| l.contains(n))
+                || names.iter().filter(|m| *m == n).count() > 1;
+            if again {
+                errln!(
+                    "error: `{n}` is assumed twice (in --assume \"{}\")",
+                    assume[k]
+                );
+                return Err(());
+            }
+            if let Some(j) = (0..=k).find(|&j| bounds[j].contains(n)) {
+                errln!(
+                    "error: the bounds in --assume \"{}\" use `{n}`, which is assumed in the same or a later --assume: assume `{n}` first",
+                    assume[j]
+                );
                 return Err(());
             }
         }
@@ -93,6 +176,7 @@ fn options_env(assume: &[String], bodies: &[String], opts: &ParseOptions) -> Res
                     match build_body(&name.name, &def, &env) {
                         Ok(body) => {
                             env.bodies.insert(name.name.clone(), body);
+                            genv.bodies.insert(name.name.clone(), def);
                         }
                         Err(e) => {
                             report_lower(&e, "--body", &src);
@@ -103,7 +187,7 @@ fn options_env(assume: &[String], bodies: &[String], opts: &ParseOptions) -> Res
             }
         }
     }
-    Ok(env)
+    Ok((env, genv))
 }
 
 /// Set when lowering an argument ran out of time: `equiv` is then undecided (3), not bad input.
@@ -121,12 +205,10 @@ fn bad_input_or_undecided() -> u8 {
 
 type Conditions = Vec<(rigor::normal::Rat, rigor::lower::Need)>;
 
-fn lower_arg(
-    text: &str,
-    what: &str,
-    env: &Env,
-    opts: &ParseOptions,
-) -> Result<(rigor::normal::Rat, Conditions), ()> {
+/// An argument parsed, lowered, and the conditions for it to be defined.
+type Lowered = (rigor::syntax::ast::Expr, rigor::normal::Rat, Conditions);
+
+fn lower_arg(text: &str, what: &str, env: &Env, opts: &ParseOptions) -> Result<Lowered, ()> {
     let e = parse_expr(text, opts).map_err(|e| report_syntax(&e, what, text))?;
     let mut lw = Lowerer::new(env);
     let r = lw.lower(&e).map_err(|e| {
@@ -135,10 +217,8 @@ fn lower_arg(
             TIMED_OUT.store(true, std::sync::atomic::Ordering::Relaxed);
         }
     })?;
-    Ok((
-        r,
-        lw.divisors.into_iter().map(|d| (d.value, d.need)).collect(),
-    ))
+    let conds = lw.divisors.into_iter().map(|d| (d.value, d.need)).collect();
+    Ok((e, r, conds))
 }
 
 fn condition_text(c: &(rigor::normal::Rat, rigor::lower::Need)) -> String {
@@ -158,10 +238,10 @@ pub fn simplify(
     (latex, units): (bool, Option<&str>),
     opts: &ParseOptions,
 ) -> u8 {
-    let Ok(env) = options_env(assume, bodies, opts) else {
+    let Ok((env, _)) = options_env(assume, bodies, opts) else {
         return 2;
     };
-    let Ok((r, _)) = lower_arg(expr, "<EXPR>", &env, opts) else {
+    let Ok((_, r, _)) = lower_arg(expr, "<EXPR>", &env, opts) else {
         return 2;
     };
     let dims = match units.map(|u| units_of(&[expr], u, opts)).transpose() {
@@ -231,7 +311,7 @@ pub fn equiv(
     units: Option<&str>,
     opts: &ParseOptions,
 ) -> u8 {
-    let Ok(env) = options_env(assume, bodies, opts) else {
+    let Ok((env, genv)) = options_env(assume, bodies, opts) else {
         return 2;
     };
     if let Some(u) = units {
@@ -249,14 +329,20 @@ pub fn equiv(
             }
         }
     }
-    let Ok((ra, mut conds)) = lower_arg(a, "<A>", &env, opts) else {
+    let Ok((ea, ra, mut conds)) = lower_arg(a, "<A>", &env, opts) else {
         return bad_input_or_undecided();
     };
-    let Ok((rb, cb)) = lower_arg(b, "<B>", &env, opts) else {
+    let Ok((eb, rb, cb)) = lower_arg(b, "<B>", &env, opts) else {
         return bad_input_or_undecided();
     };
     conds.extend(cb);
-    match rigor::decide::decide_where(&ra, &rb, &env.signs, &conds) {
+    let verdict = rigor::decide::decide_where(&ra, &rb, &env.signs, &conds);
+    // The guard re-checks a counterexample before it is printed: inside every
+    // assumption, and the sides as written not equal there.
+    let verdict = rigor::decide::guarded(verdict, |values| {
+        rigor::guard::counterexample_stands((&ea, &eb), &genv, values)
+    });
+    match verdict {
         Verdict::Equal => {
             outln!("equal");
             let mut texts: Vec<String> = conds.iter().map(condition_text).collect();

@@ -10,7 +10,7 @@ mod eval;
 
 pub use ball::{Ball, Skip};
 
-use crate::syntax::ast::{BodyDef, Expr};
+use crate::syntax::ast::{BodyDef, Expr, SignDecl};
 use std::collections::{HashMap, HashSet};
 
 /// What names mean, as written.
@@ -22,6 +22,90 @@ pub struct GuardEnv {
     pub bodies: HashMap<String, BodyDef>,
     /// Base names of `time` symbols.
     pub time: HashSet<String>,
+    /// What the declarations say of each symbol's value, as written, in order.
+    pub domains: Vec<(String, Domain)>,
+}
+
+/// What a declaration says of a symbol's value, as written.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Domain {
+    /// `symbols m > 0` (and `>= 0`, `!= 0`, or no sign).
+    Sign(SignDecl),
+    /// `symbols lo < x < hi`, each bound excluded or not.
+    Range {
+        /// The lower bound, as written.
+        lo: Expr,
+        /// Whether it is excluded.
+        lo_strict: bool,
+        /// The upper bound, as written.
+        hi: Expr,
+        /// Whether it is excluded.
+        hi_strict: bool,
+    },
+}
+
+/// Whether `point` clearly satisfies every declaration of `env.domains` about the
+/// symbols it gives values (a range's bounds evaluated as written at the point, with
+/// their rounding counted against it); the error names the first declaration it does
+/// not clearly satisfy. A counterexample is printed only when this holds.
+pub fn respects(env: &GuardEnv, point: &HashMap<String, f64>) -> Result<(), String> {
+    for (name, domain) in &env.domains {
+        let Some(&v) = point.get(name) else {
+            continue;
+        };
+        let x = Ball::rounded(v);
+        let ok = match domain {
+            Domain::Sign(SignDecl::Any) => true,
+            Domain::Sign(SignDecl::Positive) => x.lo() > 0.0,
+            Domain::Sign(SignDecl::Nonnegative) => x.lo() >= 0.0 || v == 0.0,
+            Domain::Sign(SignDecl::Nonzero) => x.lo() > 0.0 || x.hi() < 0.0,
+            Domain::Range {
+                lo,
+                lo_strict,
+                hi,
+                hi_strict,
+            } => {
+                let (Ok(l), Ok(h)) = (eval(lo, env, point), eval(hi, env, point)) else {
+                    return Err(format!(
+                        "the bounds of `{name}` could not be evaluated there"
+                    ));
+                };
+                let above = if *lo_strict {
+                    x.lo() > l.hi()
+                } else {
+                    x.lo() >= l.hi()
+                };
+                let below = if *hi_strict {
+                    x.hi() < h.lo()
+                } else {
+                    x.hi() <= h.lo()
+                };
+                above && below
+            }
+        };
+        if !ok {
+            let what = match domain {
+                Domain::Sign(SignDecl::Positive) => format!("{name} > 0"),
+                Domain::Sign(SignDecl::Nonnegative) => format!("{name} >= 0"),
+                Domain::Sign(SignDecl::Nonzero) => format!("{name} != 0"),
+                Domain::Sign(SignDecl::Any) => name.clone(),
+                Domain::Range {
+                    lo,
+                    lo_strict,
+                    hi,
+                    hi_strict,
+                } => format!(
+                    "{} {} {name} {} {}",
+                    crate::syntax::print::source(lo),
+                    if *lo_strict { "<" } else { "<=" },
+                    if *hi_strict { "<" } else { "<=" },
+                    crate::syntax::print::source(hi)
+                ),
+            };
+            return Err(format!("{name} = {v} does not satisfy {what}"));
+        }
+    }
+    Ok(())
 }
 
 /// The value of `e` at `point` (symbol name → value; `x`, `x'`, `x''` are separate).
@@ -40,6 +124,29 @@ pub fn eval_both(
     let x = ev.eval(a);
     let y = ev.eval(b);
     (x, y)
+}
+
+/// Whether a counterexample stands: `point` clearly satisfies every declaration
+/// ([`respects`]), and the two sides as written, evaluated there, are not equal (their
+/// enclosures tight and overlapping). A side the guard cannot evaluate leaves the exact
+/// engine's word. The error says why it does not stand.
+pub fn counterexample_stands(
+    (a, b): (&Expr, &Expr),
+    env: &GuardEnv,
+    point: &HashMap<String, f64>,
+) -> Result<(), String> {
+    respects(env, point)?;
+    if let (Ok(x), Ok(y)) = eval_both(a, b, env, point) {
+        let scale = x.mid.abs().max(y.mid.abs());
+        let equal_there = (x.mid - y.mid).abs() <= x.rad + y.rad && x.rad + y.rad <= 1e-10 * scale;
+        if equal_there {
+            return Err(format!(
+                "evaluated as written there, both sides are ≈ {:.9}",
+                x.mid
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The symbols `e` needs a value for: free names, `let` names expanded, bound

@@ -9,7 +9,7 @@ use crate::diag::{line_col, Diagnostic};
 use crate::syntax::ast::{Chain, Expr, ExprKind, Item, StmtKind};
 
 /// The kinds of first mistake (README, "rigor mark").
-pub const KINDS: [&str; 10] = [
+pub const KINDS: [&str; 11] = [
     "sign",
     "factor",
     "power",
@@ -19,6 +19,7 @@ pub const KINDS: [&str; 10] = [
     "undeclared",
     "syntax",
     "units",
+    "false_fact",
     "undecided",
 ];
 
@@ -42,6 +43,10 @@ pub enum Outcome {
     Missing,
     /// rigor could not compare them; the text says why.
     Undecided(String),
+    /// The submission reaches it only through facts that are false or contradict each
+    /// other (`given 0 = 1`): from those anything follows, so it earns nothing; the
+    /// text says where they are.
+    NotCredited(String),
 }
 
 /// One submission, marked.
@@ -140,6 +145,9 @@ pub fn kind(d: &Diagnostic) -> &'static str {
         "E0001" | "E0002" => return "syntax",
         "E0201" => return "undeclared",
         "E0401" | "E0402" | "E0403" => return "units",
+        // A given that is false, facts that contradict each other: bad input in
+        // `check` (E0306), never "could not decide".
+        "E0306" => return "false_fact",
         _ => {}
     }
     if m.contains("wrong sign") || m.contains("opposite signs") {
@@ -196,10 +204,18 @@ pub fn mark(
     let first_failure = first_failure(&sub);
     let mapping = role_mapping(reference, &sub);
     let how = (opts, resolvers.0, mapping.as_slice());
+    let outcomes = compare_all(reference, expected, &sub, how);
     let results = expected
         .iter()
         .cloned()
-        .zip(compare_all(reference, expected, &sub, how))
+        .zip(outcomes)
+        .map(|(e, o)| {
+            let o = match (o, resting_on_false_facts(&e, &sub, &mapping)) {
+                (Outcome::Right | Outcome::Undecided(_), Some(why)) => Outcome::NotCredited(why),
+                (o, _) => o,
+            };
+            (e, o)
+        })
         .collect();
     Row {
         file: name.to_string(),
@@ -226,10 +242,51 @@ fn first_failure(sub: &FileReport) -> Option<(usize, &'static str, String)> {
     Some((line, kind(d), d.message.clone()))
 }
 
-/// The submission's claim for an expected result (by label, else by the quantity on the
-/// left under the name mapping): its `lhs` and last expression, renamed.
-fn result_claim(e: &Expected, sub: &FileReport, mapping: &[(String, String)]) -> Option<String> {
-    let chain = claim_chain(sub, &e.label).or_else(|| {
+/// Where the submission's result for `e` rests on facts that are false or contradict
+/// each other (`check` reports them as E0306): the submission has such facts and its
+/// claim for `e` did not verify (a claim that verified did not use them: a false given
+/// is never a fact, and contradictory facts fail every step that uses them). The text
+/// says where they are.
+fn resting_on_false_facts(
+    e: &Expected,
+    sub: &FileReport,
+    mapping: &[(String, String)],
+) -> Option<String> {
+    let false_fact = sub
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == "E0306")
+        .min_by_key(|d| d.primary.as_ref().map_or(0, |p| p.0.start))?;
+    let chain = submission_chain(e, sub, mapping)?;
+    let verified = sub
+        .claims
+        .iter()
+        .find(|c| {
+            c.links
+                .first()
+                .is_some_and(|l| l.span.start == chain.first.span.start)
+        })
+        .is_some_and(|c| !c.links.is_empty() && c.links.iter().all(|l| l.status.is_verified()));
+    if verified {
+        return None;
+    }
+    let line = false_fact
+        .primary
+        .as_ref()
+        .map_or(0, |p| line_col(&sub.source, p.0.start).0);
+    Some(format!(
+        "it rests on a fact that is false or contradicts the others, line {line}"
+    ))
+}
+
+/// The submission's claim for an expected result: by label, else by the quantity on the
+/// left under the name mapping.
+fn submission_chain<'r>(
+    e: &Expected,
+    sub: &'r FileReport,
+    mapping: &[(String, String)],
+) -> Option<&'r Chain> {
+    claim_chain(sub, &e.label).or_else(|| {
         let ast = sub.ast.as_ref()?;
         ast.items.iter().find_map(|i| match i {
             Item::Stmt(s) => match &s.kind {
@@ -242,7 +299,13 @@ fn result_claim(e: &Expected, sub: &FileReport, mapping: &[(String, String)]) ->
             },
             _ => None,
         })
-    })?;
+    })
+}
+
+/// The submission's claim for an expected result ([`submission_chain`]): its `lhs` and
+/// last expression, renamed.
+fn result_claim(e: &Expected, sub: &FileReport, mapping: &[(String, String)]) -> Option<String> {
+    let chain = submission_chain(e, sub, mapping)?;
     let last = chain.links.last().map_or(chain.first.span, |l| l.rhs.span);
     Some(format!(
         "{} = {}",
@@ -311,15 +374,21 @@ fn outcome_at(r: &FileReport, line: usize) -> Outcome {
     };
     match c.links.first().map(|l| &l.status) {
         Some(Status::Verified { .. }) => Outcome::Right,
+        // Shown false under the reference's facts: wrong, whatever the diagnostic (a
+        // sign, a false inequality, a division by zero, units), as `check` says it.
+        // Facts that contradict each other show nothing.
         Some(Status::Failed)
-            if r.diagnostics
+            if !r
+                .diagnostics
                 .iter()
                 .filter(inside)
-                .any(|d| d.code == "E0301") =>
+                .any(|d| d.code == "E0306") =>
         {
             Outcome::Wrong
         }
-        Some(Status::Failed) => Outcome::Undecided("rigor could not decide it".into()),
+        Some(Status::Failed) => Outcome::Undecided(
+            "the reference's facts contradict each other where it is checked".into(),
+        ),
         _ => Outcome::Undecided(
             r.diagnostics
                 .iter()

@@ -157,3 +157,32 @@ pub fn sample(s: &Assumptions, a: AtomId, t: &Q) -> Sample {
     }
     Sample::At(&lo + t * (&hi - &lo))
 }
+
+/// Whether the region the declarations allow for the symbols `syms` (and, through their
+/// bounds, the symbols those mention) is known to have interior: each declared interval
+/// has bounds whose difference the declared signs show positive (`0 < x < L` with
+/// `L > 0`), or numeric bounds that enclosures show apart. Only then is a nonzero
+/// rational function nonzero somewhere in it: on a one-point interval (`1 <= x <= 1`),
+/// or between bounds nobody can compare, `x - 1` may vanish on all of it.
+pub fn have_interior(s: &Assumptions, syms: &[AtomId]) -> bool {
+    let mut todo: Vec<AtomId> = syms.to_vec();
+    let mut seen: Vec<AtomId> = Vec::new();
+    let half = Q::new(BigInt::one(), BigInt::from(2));
+    while let Some(a) = todo.pop() {
+        if seen.contains(&a) {
+            continue;
+        }
+        seen.push(a);
+        let Some(r) = s.range(a) else {
+            continue;
+        };
+        let apart = r.hi.sub(&r.lo).is_ok_and(|d| s.rat(&d) == Sign::Pos)
+            || matches!(sample(s, a, &half), Sample::At(_));
+        if !apart {
+            return false;
+        }
+        crate::decide::symbols_in(&r.lo, &mut todo);
+        crate::decide::symbols_in(&r.hi, &mut todo);
+    }
+    true
+}

@@ -25,9 +25,10 @@ const PREAMBLE: &str = "\\documentclass[11pt]{article}
 /// The worked solution of a checked file as a standalone LaTeX document.
 ///
 /// Claims are `align*` environments, one link per line with its justification;
-/// links that did not verify carry a bold `[not verified]` and the checker's message
-/// follows the claim. A file that could not be read gives a short document listing
-/// its diagnostics.
+/// links that did not verify carry their verdict in bold (`[does not hold]`, `[not
+/// verified]`, `[not checked]`) and the checker's message follows the claim; in the
+/// closing "Results", only a verified result is boxed. A file that could not be read
+/// gives a short document listing its diagnostics.
 pub fn document(report: &FileReport) -> String {
     document_with(report, Detail::Written)
 }

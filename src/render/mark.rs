@@ -12,6 +12,7 @@ fn outcome(o: &Outcome) -> String {
         Outcome::Wrong => "wrong".into(),
         Outcome::Missing => "missing".into(),
         Outcome::Undecided(why) => format!("undecided ({why})"),
+        Outcome::NotCredited(why) => format!("not credited ({why})"),
     }
 }
 
@@ -66,20 +67,34 @@ pub fn human(rows: &[Row]) -> String {
     out
 }
 
-/// The class summary table.
+/// Untrusted text for a cell of a Markdown table: no `<tag>`, link, code span or entity
+/// in it stays live, and no `|` splits the cell (`_` and `*` are left as written).
+fn cell(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in clean(s).chars() {
+        if matches!(c, '\\' | '<' | '>' | '|' | '[' | ']' | '`' | '&') {
+            out.push('\\');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// The class summary table (Markdown): file names and reasons are untrusted text,
+/// escaped as [`cell`]s.
 pub fn summary(rows: &[Row]) -> String {
     let mut out =
         String::from("| file | steps verified | first failure | results |\n|---|---|---|---|\n");
     for r in rows {
         let (right, all) = r.results_score();
         let first = match (&r.unreadable, &r.first_failure) {
-            (Some(why), _) => format!("not marked: {}", clean(why)),
+            (Some(why), _) => format!("not marked: {}", cell(why)),
             (None, Some((line, kind, _))) => format!("line {line} ({kind})"),
             (None, None) => "none".into(),
         };
         out.push_str(&format!(
             "| {} | {}/{} | {first} | {right}/{all} |\n",
-            clean(&r.file).replace('|', "\\|"),
+            cell(&r.file),
             r.steps.0,
             r.steps.1
         ));
@@ -156,6 +171,9 @@ fn hint(kind: &str) -> &'static str {
         "undeclared" => "a name is used before it is declared (a typo?)",
         "syntax" => "rigor could not read this line",
         "units" => "the two sides are not in the same units",
+        "false_fact" => {
+            "this fact is false (or your facts contradict each other): anything would follow from it, so nothing that rests on it counts"
+        }
         _ => "rigor could not decide this step",
     }
 }
@@ -214,6 +232,9 @@ pub fn feedback(r: &Row, reveal: Option<&str>) -> String {
             Outcome::Wrong => "not what it should be".to_string(),
             Outcome::Missing => "not found in your work".to_string(),
             Outcome::Undecided(_) => "could not be compared".to_string(),
+            Outcome::NotCredited(_) => {
+                "not credited: your work reaches it only through facts that are false or contradict each other".to_string()
+            }
         };
         out.push_str(&format!("- `{}`: {said}\n", e.lhs.replace('`', "'")));
     }

@@ -11,8 +11,10 @@ use crate::check::report::FileReport;
 
 /// The worked solution of a checked file as Markdown.
 ///
-/// Links that did not verify carry `\textbf{[not verified]}`, and after the claim
-/// each diagnostic follows as `> **not verified** (line N): message`.
+/// Links that did not verify carry their verdict (`\textbf{[does not hold]}`,
+/// `[not verified]`, `[not checked]`), and after the claim each diagnostic follows as
+/// `> **does not hold** (line N): message`; in the closing "Results", only a verified
+/// result is boxed.
 pub fn document(report: &FileReport) -> String {
     document_with(report, Detail::Written)
 }

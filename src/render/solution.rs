@@ -453,7 +453,7 @@ impl<'a> Builder<'a> {
     }
 
     /// The closing "Results" block: the claims `result [..]` names (each `first = last`
-    /// of its chain), boxed.
+    /// of its chain), each boxed when it verified and marked otherwise.
     fn results(&mut self) {
         let mut named: Vec<&str> = Vec::new();
         for item in &self.ast.items {
@@ -482,22 +482,67 @@ impl<'a> Builder<'a> {
                 .links
                 .last()
                 .map_or(crate::syntax::ast::RelOp::Eq, |k| k.op);
-            shown.push(Block::Display {
-                prefix: None,
-                math: format!(
-                    "\\boxed{{{} {} {}}}",
-                    expr_latex_in(&chain.first, &self.ctx),
-                    rel_latex(op),
-                    expr_latex_in(last, &self.ctx)
-                ),
-                note: None,
-                tag: Some(self.number(&l.name)),
-            });
+            let (first, last) = (
+                expr_latex_in(&chain.first, &self.ctx),
+                expr_latex_in(last, &self.ctx),
+            );
+            let tag = Some(self.number(&l.name));
+            // Only a result every link of which verified is boxed; any other carries
+            // the mark of its worst link, in the words the rest of the document uses.
+            match self.result_mark(st, chain) {
+                None => shown.push(Block::Display {
+                    prefix: None,
+                    math: format!("\\boxed{{{first} {} {last}}}", rel_latex(op)),
+                    note: None,
+                    tag,
+                }),
+                Some(flag) => shown.push(Block::Claim {
+                    rows: vec![Row {
+                        lhs: Some(first),
+                        rel: rel_latex(op),
+                        rhs: last,
+                        by: None,
+                        where_: None,
+                        flag: Some(flag),
+                    }],
+                    tag,
+                }),
+            }
         }
         if !shown.is_empty() {
             self.blocks.push(Block::Heading(2, "Results".into()));
             self.blocks.extend(shown);
         }
+    }
+
+    /// The mark of a result that is not verified: "does not hold" when a link of its
+    /// chain was shown false, else "not verified" when one is undecided, else "not
+    /// checked" (including a claim the report does not hold); `None` when every link
+    /// verified.
+    fn result_mark(&self, stmt: &Stmt, chain: &Chain) -> Option<&'static str> {
+        let claim = self.claim_report(stmt);
+        let statuses: Vec<Option<&Status>> = chain
+            .links
+            .iter()
+            .enumerate()
+            .map(|(k, link)| {
+                claim
+                    .and_then(|c| c.links.get(k))
+                    .map(|l| &l.status)
+                    .or_else(|| self.report.link_status(link.span))
+            })
+            .collect();
+        if !statuses.is_empty() && statuses.iter().all(|s| s.is_some_and(Status::is_verified)) {
+            return None;
+        }
+        let has = |f: fn(&Status) -> bool| statuses.iter().flatten().any(|s| f(s));
+        Some(if has(|s| *s == Status::Failed) {
+            DOES_NOT_HOLD
+        } else if has(|s| *s == Status::Undecided) {
+            NOT_VERIFIED
+        } else {
+            NOT_CHECKED
+        })
     }
 
     /// What was checked, in one closing line.
@@ -758,11 +803,7 @@ impl<'a> Builder<'a> {
                     .and_then(|c| c.links.get(k))
                     .map(|l| &l.status)
                     .or_else(|| self.report.link_status(link.span));
-                let flag = match status {
-                    Some(Status::Failed | Status::Undecided) => Some("not verified"),
-                    Some(Status::Error | Status::NotChecked) => Some("not checked"),
-                    _ => None,
-                };
+                let flag = status.map_or(Some(NOT_CHECKED), mark);
                 let by = link.by.as_ref().map(|(by, _)| match by {
                     By::Text(t) => Just::Text(t.clone()),
                     By::Labels(ls) => {
@@ -843,9 +884,28 @@ impl<'a> Builder<'a> {
         found
     }
 
+    /// The status of the link a diagnostic points at: the link with its span, else the
+    /// narrowest link whose span holds its start.
+    fn status_at(&self, d: &Diagnostic) -> Option<&'a Status> {
+        let (span, _) = d.primary.as_ref()?;
+        let links = self.report.claims.iter().flat_map(|c| &c.links);
+        links
+            .clone()
+            .find(|l| l.span == *span)
+            .or_else(|| {
+                links
+                    .filter(|l| l.span.start <= span.start && span.start < l.span.end)
+                    .min_by_key(|l| l.span.end - l.span.start)
+            })
+            .map(|l| &l.status)
+    }
+
     fn problem(&self, d: &Diagnostic, in_claim: bool) -> Problem {
         let kind = match d.severity {
-            Severity::Error if in_claim => "not verified",
+            // In a claim, the words of the verdict of the link it is about.
+            Severity::Error if in_claim => {
+                self.status_at(d).and_then(mark).unwrap_or("not verified")
+            }
             Severity::Error => "error",
             Severity::Warning => "warning",
             Severity::Note => "note",
@@ -869,6 +929,26 @@ impl<'a> Builder<'a> {
         }
     }
 }
+
+/// The words for a link that did not verify, as every view says them: a link shown
+/// false "does not hold" (E0301), one neither shown true nor false is "not verified"
+/// (E0302), and one that could not be read or cites a failure is "not checked".
+/// `None` for a verified link.
+pub(crate) fn mark(s: &Status) -> Option<&'static str> {
+    match s {
+        Status::Verified { .. } => None,
+        Status::Failed => Some(DOES_NOT_HOLD),
+        Status::Undecided => Some(NOT_VERIFIED),
+        Status::Error | Status::NotChecked => Some(NOT_CHECKED),
+    }
+}
+
+/// The mark of a link shown false.
+pub(crate) const DOES_NOT_HOLD: &str = "does not hold";
+/// The mark of a link neither verified nor refuted.
+pub(crate) const NOT_VERIFIED: &str = "not verified";
+/// The mark of a link that was not checked.
+pub(crate) const NOT_CHECKED: &str = "not checked";
 
 fn is_declaration(kind: &StmtKind) -> bool {
     matches!(

@@ -416,13 +416,13 @@ fn failures_are_marked_in_documents() {
     assert!(!tex.contains("Fx") && !tex.contains("{two}"), "{tex}");
     assert!(tex.contains("rigor verified 2 of 3 steps."), "{tex}");
     assert!(
-        tex.contains("&= 2 m\\,g \\quad\\text{(by doubling it)} \\quad\\textbf{[not verified]}"),
+        tex.contains("&= 2 m\\,g \\quad\\text{(by doubling it)} \\quad\\textbf{[does not hold]}"),
         "{tex}"
     );
     assert!(tex.contains("\\text{by (1)}"), "{tex}");
     assert!(
         tex.contains(
-            "\\textbf{Not verified (line 6):} the two sides differ by a factor \\{2\\} \\& 100\\%"
+            "\\textbf{Does not hold (line 6):} the two sides differ by a factor \\{2\\} \\& 100\\%"
         ),
         "{tex}"
     );
@@ -436,7 +436,7 @@ fn failures_are_marked_in_documents() {
     assert!(md.starts_with("# Small\n"), "{md}");
     assert!(
         md.contains(
-            "> **not verified** (line 6): the two sides differ by a factor {2} & 100%\n>\n> here\n>\n> at m = 1\n"
+            "> **does not hold** (line 6): the two sides differ by a factor {2} & 100%\n>\n> here\n>\n> at m = 1\n"
         ),
         "{md}"
     );
@@ -803,7 +803,7 @@ fn checked_documents_compile() {
         }
         if r.failed() > 0 {
             assert!(
-                tex.contains("[not verified]"),
+                tex.contains("[does not hold]"),
                 "{name}: failures not marked\n{tex}"
             );
         }
@@ -889,4 +889,182 @@ fn failure_notes_typeset_their_expressions_and_keep_words_as_words() {
     ] {
         assert_eq!(note_inlines(words), vec![Inline::Text(words.into())]);
     }
+}
+
+/// A file whose results verify, fail, and are undecided, with hostile `by` text.
+const RESULTS: &str = "# Results that do not all hold
+symbols m g R > 0
+symbols beta
+symbols x_0
+time x theta
+unknowns F
+result [und], [xdd], [ok], [neg]
+
+claim [und] sqrt(x_0)^2 = abs(x_0)
+
+given [Fx] F - m g sin(beta) = m x''
+given [MG] F R = -(m R^2/2) theta''
+constraint [roll] x = R theta
+
+claim [xdd] x'' = -1/2 g sin(beta) by <img src=x onerror=alert(1)> & `<b>`
+claim [ok] x'' = -2/3 g sin(beta) by [Fx], [MG], [roll]
+claim [neg] m g < 0
+";
+
+fn results_report() -> FileReport {
+    let opts = crate::check::Options {
+        clock: None,
+        ..Default::default()
+    };
+    let r = crate::check::check_source(
+        "results.deriv",
+        RESULTS,
+        &opts,
+        &crate::check::MemoryResolver::new(),
+    );
+    let status = |label: &str| {
+        r.claims
+            .iter()
+            .find(|c| c.label.as_deref() == Some(label))
+            .map(|c| c.links[0].status.clone())
+    };
+    assert_eq!(
+        status("und"),
+        Some(Status::Undecided),
+        "{:?}",
+        r.diagnostics
+    );
+    assert_eq!(status("xdd"), Some(Status::Failed), "{:?}", r.diagnostics);
+    assert!(status("ok").is_some_and(|s| s.is_verified()));
+    assert_eq!(status("neg"), Some(Status::Failed), "{:?}", r.diagnostics);
+    r
+}
+
+/// The text of the "Results" section (from its heading to the closing line).
+fn results_section<'t>(doc: &'t str, heading: &str) -> &'t str {
+    let start = doc
+        .find(heading)
+        .unwrap_or_else(|| panic!("no Results in:\n{doc}"));
+    let rest = &doc[start..];
+    &rest[..rest.find("rigor verified").unwrap_or(rest.len())]
+}
+
+#[test]
+fn only_verified_results_are_boxed_and_the_others_carry_their_verdict() {
+    let r = results_report();
+    let tex = latex::document(&r);
+    let results = results_section(&tex, "\\section*{Results}");
+    // One box, for the one result that verified.
+    assert_eq!(results.matches("\\boxed").count(), 1, "{results}");
+    assert!(
+        results.contains("\\boxed{\\ddot{x} = -\\frac{2}{3}\\,g\\,\\sin\\beta}"),
+        "{results}"
+    );
+    // The failed equation and inequality "do not hold"; the undecided one is "not verified".
+    assert!(
+        results.contains(
+            "\\ddot{x} &= -\\frac{1}{2}\\,g\\,\\sin\\beta \\quad\\textbf{[does not hold]}"
+        ),
+        "{results}"
+    );
+    assert!(
+        results.contains("m\\,g &< 0 \\quad\\textbf{[does not hold]}"),
+        "{results}"
+    );
+    assert!(
+        results.contains("\\left|x_{0}\\right| \\quad\\textbf{[not verified]}"),
+        "{results}"
+    );
+    // The same words on the steps themselves and in the problems after them.
+    assert!(tex.contains("\\textbf{Does not hold (line 15):}"), "{tex}");
+    assert!(tex.contains("\\textbf{Not verified (line 9):}"), "{tex}");
+    assert!(!tex.contains("<img"), "{tex}");
+    compile("results", &tex);
+
+    let md = markdown::document(&r);
+    let results = results_section(&md, "## Results");
+    assert_eq!(results.matches("\\boxed").count(), 1, "{results}");
+    assert!(
+        results.contains(
+            "\\ddot{x} &= -\\frac{1}{2}\\,g\\,\\sin\\beta \\quad\\textbf{[does not hold]}"
+        ),
+        "{results}"
+    );
+    assert!(
+        results.contains("m\\,g &< 0 \\quad\\textbf{[does not hold]}"),
+        "{results}"
+    );
+    assert!(
+        results.contains("\\left|x_{0}\\right| \\quad\\textbf{[not verified]}"),
+        "{results}"
+    );
+    assert!(md.contains("> **does not hold** (line 15):"), "{md}");
+    assert!(md.contains("> **not verified** (line 9):"), "{md}");
+    // `by` text reaches Markdown with no tag a renderer would keep live.
+    assert!(!md.contains("<img") && !md.contains("<b>"), "{md}");
+    assert!(
+        md.contains(
+            "(by \u{2039}img src=x onerror=alert(1)\u{203a} and \u{2018}\u{2039}b\u{203a}\u{2018})"
+        ),
+        "{md}"
+    );
+
+    // The playground shows the same blocks.
+    let page = super::web::page(&r);
+    let blocks = page["solution"]["blocks"].as_array().expect("blocks");
+    let at = blocks
+        .iter()
+        .position(|b| b["kind"] == "heading" && b["parts"][0]["text"] == "Results")
+        .expect("a Results heading");
+    let shown: Vec<&str> = blocks[at + 1..at + 5]
+        .iter()
+        .map(|b| b["latex"].as_str().unwrap_or(""))
+        .collect();
+    assert!(shown[0].contains("[not verified]"), "{shown:?}");
+    assert!(shown[1].contains("[does not hold]"), "{shown:?}");
+    assert!(shown[2].starts_with("\\boxed"), "{shown:?}");
+    assert!(shown[3].contains("[does not hold]"), "{shown:?}");
+}
+
+#[test]
+fn user_text_never_reaches_markdown_as_html() {
+    // Every place user text reaches a Markdown document: title, headings, prose, `by`,
+    // labels, `where` values, file names, messages with code spans.
+    let src = "# T <img src=a onerror=alert(1)>\n\
+               ## H <img src=b onerror=alert(1)>\n\
+               > P <img src=c onerror=alert(1)> `<img src=d onerror=alert(1)>`\n\
+               symbols m > 0\n\
+               given [g1] m = m by <img src=e onerror=alert(1)>\n\
+               claim [c1] m = m by ```<img src=f onerror=alert(1)>`\n\
+               claim [c2] m = 2 m by <script>alert(1)</script>\n\
+               use [X] from \"<img src=g onerror=alert(1)>.deriv\"\n";
+    let opts = crate::check::Options {
+        clock: None,
+        ..Default::default()
+    };
+    let r = crate::check::check_source("h.deriv", src, &opts, &crate::check::MemoryResolver::new());
+    for md in [
+        markdown::document(&r),
+        markdown::document_with(&r, Detail::Steps),
+        markdown::book(std::slice::from_ref(&r), "B <img src=h onerror=alert(1)>"),
+    ] {
+        assert!(md.contains("onerror"), "the text is kept:\n{md}");
+        for tag in ["<img", "<script", "</script"] {
+            // Only escaped, or inside a code span, may it appear as written.
+            for (k, _) in md.match_indices(tag) {
+                let before = &md[..k];
+                if before.ends_with('\\') {
+                    continue;
+                }
+                let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+                let ticks = before[line_start..].matches('`').count()
+                    - before[line_start..].matches("\\`").count();
+                assert!(ticks % 2 == 1, "a live {tag} at {k}:\n{md}");
+            }
+        }
+    }
+    // A message whose backticks a renderer would pair otherwise: every stray backtick
+    // is escaped, so the tag is text.
+    let msg = super::text::markdown_message("```<img src=x onerror=alert(1)>`");
+    assert_eq!(msg, "\\`\\``<img src=x onerror=alert(1)>`");
 }

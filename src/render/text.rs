@@ -202,19 +202,24 @@ pub(crate) fn block_safe(mut s: String) -> String {
 
 /// A message that may hold `code spans`, for inside a Markdown paragraph: text outside
 /// backticks is escaped as [`markdown_inline`], code spans are kept (when the
-/// backticks pair up).
+/// backticks pair up). Every backtick that does not open or close one of those spans
+/// is escaped, and each span is one backtick on each side of text without backticks,
+/// so a Markdown renderer pairs them exactly as here: in `` ```<img …>` `` a renderer
+/// would see no span (a run of three does not close with one) and keep the tag live.
 pub(crate) fn markdown_message(s: &str) -> String {
     if s.matches('`').count() % 2 == 1 {
         return markdown_inline(s);
     }
     let mut out = String::new();
     for (k, piece) in s.split('`').enumerate() {
-        if k % 2 == 1 {
+        if k % 2 == 0 {
+            out.push_str(&markdown_inline(piece));
+        } else if piece.is_empty() {
+            out.push_str("\\`\\`");
+        } else {
             out.push('`');
             out.push_str(&piece.replace(['\n', '\r'], " "));
             out.push('`');
-        } else {
-            out.push_str(&markdown_inline(piece));
         }
     }
     out
@@ -223,7 +228,10 @@ pub(crate) fn markdown_message(s: &str) -> String {
 /// User text for the `\text{…}` or `\tag{…}` of math rendered by MathJax or KaTeX,
 /// which show the inside of `\text` literally: braces, `$`, `\` and `%` (a comment
 /// in TeX input) are replaced by harmless look-alikes, as are `^` and `_` (an error in
-/// KaTeX's text mode) and `&` (an alignment tab inside `aligned`).
+/// KaTeX's text mode), `&` (an alignment tab inside `aligned`), and `<`, `>` and `` ` ``:
+/// a Markdown renderer sees the math as text first, and CommonMark keeps `<img …>` in
+/// it as live HTML, and a backtick would open a code span across the math (a backslash
+/// would not survive to the math renderer).
 pub(crate) fn mathjax_text(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
     for c in s.chars() {
@@ -237,6 +245,9 @@ pub(crate) fn mathjax_text(s: &str) -> String {
             '^' => out.push('\u{2c6}'),
             '_' => out.push('\u{2cd}'),
             '&' => out.push_str("and"),
+            '`' => out.push('\u{2018}'),
+            '<' => out.push('\u{2039}'),
+            '>' => out.push('\u{203a}'),
             '\t' | '\n' | '\r' => out.push(' '),
             c if c.is_control() => {}
             c => out.push(c),

@@ -177,7 +177,7 @@ mod tests {
         assert_eq!(claims.len(), 2, "{blocks:?}");
         assert!(claims[0].starts_with("\\begin{aligned}"), "{}", claims[0]);
         assert!(!claims[0].contains("not verified"), "{}", claims[0]);
-        assert!(claims[1].contains("not verified"), "{}", claims[1]);
+        assert!(claims[1].contains("[does not hold]"), "{}", claims[1]);
         let problem = blocks.iter().find(|b| b["kind"] == "problems").unwrap();
         assert_eq!(problem["items"][0]["line"], 7);
     }

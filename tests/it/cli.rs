@@ -533,7 +533,7 @@ fn steps_fill_in_the_work() {
         "--steps",
     ]);
     expect_code(&r, 1, "--steps of a failing file");
-    assert!(r.stdout.contains("**not verified**") && r.stdout.contains("*Working.*"));
+    assert!(r.stdout.contains("**does not hold**") && r.stdout.contains("*Working.*"));
 }
 
 /// SHA-256 of every file under `dir`, by path.

@@ -119,17 +119,31 @@ fn respond(mut stream: std::net::TcpStream, dir: &Path) {
     };
 }
 
-/// Opens `url` (with `args` for the driver) and returns what the page showed.
+/// Opens `url` (with `args` for the driver) and returns what the page showed. A long
+/// URL goes to the driver in a file (`@FILE`): one argument may hold at most 128 KiB.
 fn drive(url: &str, args: &[&str]) -> Value {
+    let file = std::env::temp_dir().join(format!(
+        "rigor-web-url-{}-{:x}",
+        std::process::id(),
+        url.len() ^ (url.as_ptr() as usize)
+    ));
+    let arg = if url.len() > 16_000 {
+        std::fs::write(&file, url).expect("write the URL");
+        format!("@{}", file.display())
+    } else {
+        url.to_string()
+    };
     let out = Command::new("node")
         .arg(root().join("web/test/drive.js"))
-        .arg(url)
+        .arg(&arg)
         .args(args)
         .output()
         .expect("node runs");
+    let _ = std::fs::remove_file(&file);
     assert!(
         out.status.success(),
-        "the browser driver failed on {url}:\n{}",
+        "the browser driver failed on {}:\n{}",
+        &url[..url.len().min(200)],
         String::from_utf8_lossy(&out.stderr)
     );
     serde_json::from_slice(&out.stdout).expect("the driver prints JSON")
@@ -215,7 +229,7 @@ fn a_shared_link_opens_and_is_checked_at_once() {
     // The worked solution, with math set by KaTeX and the failure marked.
     let preview = v["preview"].as_str().unwrap_or("");
     assert!(preview.contains("The rod about its end"), "{preview}");
-    assert!(preview.contains("not verified (line 7)"), "{preview}");
+    assert!(preview.contains("does not hold (line 7)"), "{preview}");
     assert!(v["elements"]["math"].as_u64().unwrap_or(0) > 3, "{v}");
     assert_eq!(v["katexErrors"], serde_json::json!([]), "{v}");
 }
@@ -332,4 +346,104 @@ fn a_derivation_that_runs_long_is_stopped_by_the_budget() {
             .any(|d| d[2].as_str().unwrap_or("").contains("E0902")),
         "{diags:?}"
     );
+}
+
+#[test]
+fn a_link_that_cannot_be_read_says_so_and_claims_nothing() {
+    if skip() {
+        return;
+    }
+    // `__4` is the bytes FF FE: not UTF-8. `%%` is not base64url at all.
+    for hash in ["#src=__4", "#src=%25%25"] {
+        let v = drive(&format!("{}{hash}", site()), &[]);
+        assert_eq!(v["status"], "error", "{hash}: {v}");
+        let text = v["statusText"].as_str().unwrap_or("");
+        assert!(text.contains("this link cannot be read"), "{hash}: {text}");
+        assert!(!text.contains("verified"), "{hash}: {text}");
+        assert_eq!(marks(&v), [], "{hash}: {v}");
+        assert_eq!(v["summary"], "", "{hash}: {v}");
+        assert_eq!(v["preview"], "", "{hash}: {v}");
+        assert_eq!(v["editorLength"], 0, "{hash}: {v}");
+    }
+}
+
+#[test]
+fn an_empty_document_has_nothing_to_check_and_verifies_nothing() {
+    if skip() {
+        return;
+    }
+    for text in ["", "# Only a title\nsymbols m > 0\n"] {
+        let v = drive(&format!("{}{}", site(), link(text)), &[]);
+        assert_eq!(v["status"], "empty", "{text:?}: {v}");
+        let status = v["statusText"].as_str().unwrap_or("");
+        assert!(status.starts_with("nothing to check"), "{text:?}: {status}");
+        assert!(!status.contains("all steps verified"), "{text:?}: {status}");
+    }
+    // One step, verified: said as it is.
+    let v = drive(
+        &format!("{}{}", site(), link("symbols x\nclaim x + x = 2 x\n")),
+        &[],
+    );
+    assert_eq!(v["status"], "ok", "{v}");
+    assert!(
+        v["statusText"]
+            .as_str()
+            .unwrap_or("")
+            .starts_with("the one step verified"),
+        "{v}"
+    );
+}
+
+#[test]
+fn a_large_document_is_shown_in_slices_and_the_page_stays_responsive() {
+    if skip() {
+        return;
+    }
+    // 10,000 short claims: typesetting them all blocked the page for about 43 s.
+    let mut text = String::from("symbols x\n");
+    for k in 1..=10_000 {
+        text.push_str(&format!("claim x + {k} = {k} + x\n"));
+    }
+    let v = drive(
+        &format!("{}{}", site(), link(&text)),
+        &["--timeout", "150000"],
+    );
+    assert_eq!(v["status"], "ok", "{}", short(&v));
+    assert!(
+        v["statusText"]
+            .as_str()
+            .unwrap_or("")
+            .starts_with("all 10000 steps verified"),
+        "{}",
+        short(&v)
+    );
+    assert_eq!(marks(&v).len(), 10_000);
+    // The preview is cut, and says so.
+    assert_eq!(v["cuts"], serde_json::json!(["blocks"]), "{}", short(&v));
+    let preview = v["preview"].as_str().unwrap_or("");
+    assert!(
+        preview.contains("The worked solution is cut here"),
+        "{}",
+        short(&v)
+    );
+    // The page answered every poll promptly while it checked and built itself (the
+    // worker checks; the page is built in slices).
+    let slowest = v["slowestPoll"].as_u64().unwrap_or(u64::MAX);
+    assert!(
+        slowest < 2_000,
+        "the page was blocked for {slowest} ms: {}",
+        short(&v)
+    );
+}
+
+/// A snapshot without its long parts, for failure messages.
+fn short(v: &Value) -> String {
+    let mut v = v.clone();
+    for k in ["marks", "preview", "diagnostics"] {
+        if let Some(x) = v.get_mut(k) {
+            let s = x.to_string();
+            *x = Value::String(s.chars().take(400).collect());
+        }
+    }
+    v.to_string()
 }

@@ -1,9 +1,9 @@
 // Drives a real headless Chromium through the DevTools protocol (over a pipe: no
 // extra packages) for rigor's browser tests: opens URL, waits until the page has
-// finished checking (#status data-kind is ok, failed or error), optionally types new
+// finished checking (#status data-kind is ok, failed, error or empty), optionally types new
 // text into the editor and waits again, then prints what the page shows as JSON.
 //
-//   node web/test/drive.js URL [--type TEXT] [--examples] [--screenshot OUT.png]
+//   node web/test/drive.js URL|@FILE [--type TEXT] [--examples] [--screenshot OUT.png]
 //                              [--timeout MS]
 //
 // With --examples it clicks every example button in turn, waits for its check and
@@ -12,6 +12,10 @@
 //          "diagnostics": [[severity, line, text]], "preview": text,
 //          "elements": {tag: count} (of the preview), "scriptRan": bool, "hash",
 //          "exampleNames": [name], "katexErrors": [message],
+//          "cuts": [what the page left out: "blocks", "diagnostics", "deadline"],
+//          "editorLength", "longestTask" (ms, the page's longest main-thread task),
+//          "slowestPoll" (ms, the longest the page took to answer a poll while it
+//          checked and built itself),
 //          "examples": [[name, status, summary, [KaTeX error]]]}
 "use strict";
 const { spawn } = require("child_process");
@@ -20,7 +24,8 @@ const os = require("os");
 const path = require("path");
 
 const args = process.argv.slice(2);
-const url = args[0];
+// `@FILE`: the URL is in FILE (a long `#src=` link is longer than one argument may be).
+const url = args[0].startsWith("@") ? fs.readFileSync(args[0].slice(1), "utf8").trim() : args[0];
 const opt = (name) => {
   const i = args.indexOf(name);
   return i > 0 ? args[i + 1] : null;
@@ -95,14 +100,21 @@ async function evaluate(session, expression) {
   return r.result.value;
 }
 
-// Waits until the page is done with the text it holds: not loading, not checking.
+// The longest the page took to answer one poll: the page's main thread is blocked
+// that long (a poll is evaluated on it).
+let slowestPoll = 0;
+
+// Waits until the page is done with the text it holds: not loading, not checking,
+// not building the page.
 async function settled(session, deadline) {
   for (;;) {
+    const asked = Date.now();
     const kind = await evaluate(
       session,
       `(() => { const s = document.getElementById("status"); return s ? (s.dataset.kind || "") : ""; })()`,
     ).catch(() => "");
-    if (["ok", "failed", "error"].includes(kind)) return kind;
+    slowestPoll = Math.max(slowestPoll, Date.now() - asked);
+    if (["ok", "failed", "error", "empty"].includes(kind)) return kind;
     if (Date.now() > deadline) throw new Error(`the page did not finish checking (status: ${kind || "none"})`);
     await sleep(100);
   }
@@ -124,6 +136,9 @@ const SNAPSHOT = `(() => {
     hash: location.hash,
     exampleNames: q("[data-example]").map((e) => e.dataset.example),
     katexErrors: q("#preview .katex-error").map((e) => e.title || e.textContent),
+    cuts: q("[data-cut]").map((e) => e.dataset.cut),
+    editorLength: document.getElementById("source").value.length,
+    longestTask: window.__rigorLongestTask || 0,
   };
 })()`;
 
@@ -131,6 +146,20 @@ const SNAPSHOT = `(() => {
   const { targetId } = await send("Target.createTarget", { url: "about:blank" });
   const { sessionId } = await send("Target.attachToTarget", { targetId, flatten: true });
   await send("Page.enable", {}, sessionId);
+  // The longest task on the page's main thread, from before its scripts run.
+  await send(
+    "Page.addScriptToEvaluateOnNewDocument",
+    {
+      source: `window.__rigorLongestTask = 0;
+        try {
+          new PerformanceObserver((list) => {
+            for (const e of list.getEntries())
+              window.__rigorLongestTask = Math.max(window.__rigorLongestTask, e.duration);
+          }).observe({ entryTypes: ["longtask"] });
+        } catch (e) {}`,
+    },
+    sessionId,
+  );
   await send("Page.navigate", { url }, sessionId);
   const deadline = Date.now() + timeoutMs;
   await sleep(200);
@@ -169,6 +198,7 @@ const SNAPSHOT = `(() => {
     const { data } = await send("Page.captureScreenshot", { format: "png" }, sessionId);
     fs.writeFileSync(shot, Buffer.from(data, "base64"));
   }
-  process.stdout.write(JSON.stringify(snapshot) + "\n");
-  finish(0);
+  snapshot.slowestPoll = slowestPoll;
+  // Exit once the output is written: a pipe takes a large snapshot in pieces.
+  process.stdout.write(JSON.stringify(snapshot) + "\n", () => finish(0));
 })().catch((e) => finish(1, String(e && e.stack ? e.stack : e)));
