@@ -62,4 +62,3 @@ pub fn ticking_clock() -> std::time::Duration {
         std::time::Duration::from_micros(t.get())
     })
 }
-
