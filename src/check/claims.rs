@@ -181,6 +181,18 @@ impl Checker<'_, '_> {
     /// that did not hold either — then the mistake was reported there, and this link
     /// is not checked (a note says what it depends on).
     fn failed_link(&mut self, d: crate::diag::Diagnostic, by: Option<&By>, span: Span) -> Status {
+        // A given that contradicted the others was set aside: a step on all the facts
+        // in scope that fails now may hold with it (from contradictory facts anything
+        // follows), so the contradiction is the one mistake.
+        if let (None, Some(given)) = (by, self.contradicted.clone()) {
+            if !d.code.starts_with("E04") {
+                self.not_checked_note(
+                    format!("not checked: it needs the facts in scope, but {given} contradicts the others"),
+                    span,
+                );
+                return Status::NotChecked;
+            }
+        }
         let cited: Vec<String> = match by {
             Some(By::Labels(ls)) => ls
                 .iter()
@@ -392,6 +404,11 @@ impl Checker<'_, '_> {
                     "this value does not respect the declared sign",
                 );
                 return None;
+            }
+            if let Some(unit) = self.units.get(name).cloned() {
+                if !self.value_in_unit(&format!("`where` gives `{name}`"), &unit, &a.value) {
+                    return None;
+                }
             }
             if let Some(why) = self.outside_range(x, &v) {
                 self.error(

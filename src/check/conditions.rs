@@ -4,9 +4,9 @@
 //! substituted make false fails the link; the rest are reported as assumptions.
 
 use super::signs::{essential_factor, sign_of};
-use super::solve::zero_by_facts;
 use super::step::{LinkInput, Reduced};
 use super::walk::Checker;
+use super::zeros::forced_zero;
 use crate::diag::Diagnostic;
 use crate::lower::{Condition, Need};
 use crate::normal::print::plain;
@@ -110,7 +110,7 @@ impl Checker<'_, '_> {
         let steps = red.elim.as_ref().map_or(&[][..], |e| &e.steps[..]);
         let reduced = super::solve::apply_steps(d, steps, signs).unwrap_or_else(|_| d.clone());
         if need == Need::NonZero {
-            let zero = reduced.is_zero() || zero_by_facts(&reduced, &red.scope, signs);
+            let zero = reduced.is_zero() || forced_zero(&reduced, &red.scope, signs);
             if zero && elimination {
                 // rigor's own way of solving the facts divided by zero: that says nothing
                 // about the step, which may well hold (solved another way).

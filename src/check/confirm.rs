@@ -68,11 +68,56 @@ impl Checker<'_, '_> {
         let mut rng =
             Rng(0x5EED ^ ((input.span.start as u64) << 20) ^ self.report.source.len() as u64);
         let mut agreed = false;
+        // A link verified from facts under a side condition must hold somewhere: at a
+        // point that satisfies the facts with every condition it assumes nonzero.
+        let assumes = matches!(&status, Status::Verified { side_conditions, .. } if !side_conditions.is_empty());
+        let via = red.is_some_and(|r| !r.via.is_empty());
+        let signs = &self.env.signs;
+        let nonzero: Vec<crate::normal::Rat> = if assumes && via {
+            self.conditions
+                .iter()
+                .filter(|(d, need)| {
+                    *need == crate::lower::Need::NonZero && !signs.rat(d).is_nonzero()
+                })
+                .map(|(d, _)| d.clone())
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let base = Situation::of(red);
+        let params: Vec<Step> = if nonzero.is_empty() {
+            Vec::new()
+        } else {
+            let left: Vec<Fact> = base
+                .facts
+                .iter()
+                .filter_map(|f| {
+                    let v = super::solve::apply_steps(&f.value, base.steps, signs).ok()?;
+                    (!v.is_zero()).then(|| Fact {
+                        value: v,
+                        name: f.name.clone(),
+                    })
+                })
+                .collect();
+            let is_unknown = |a: AtomId| unknown_atom(&self.scope, a);
+            super::solve::solve_for_point(&left, &is_unknown, signs).0
+        };
+        let sit = Situation {
+            nonzero: &nonzero,
+            params: &params,
+            ..base
+        };
+        // Whether every point tried was ruled out by the facts or the conditions (not
+        // by a quantity the guard could not give a value).
+        let mut ruled_out = true;
         for _ in 0..POINTS {
-            let Some(point) = self.point(input, &Situation::of(red), &HashMap::new(), &mut rng)
+            let mut excluded = false;
+            let Some(point) = self.point(input, &sit, &HashMap::new(), &mut rng, &mut excluded)
             else {
+                ruled_out &= excluded;
                 continue;
             };
+            ruled_out = false;
             let env = &self.guard_env;
             let (Ok(a), Ok(b)) = guard::eval_both(lhs, rhs, env, &point) else {
                 continue;
@@ -86,6 +131,26 @@ impl Checker<'_, '_> {
             agreed = true;
         }
         self.report.guarded += usize::from(agreed);
+        if assumes && via && ruled_out {
+            if let Status::Verified {
+                side_conditions, ..
+            } = &status
+            {
+                self.report.diagnostics.push(
+                    Diagnostic::error(
+                        "E0302",
+                        format!(
+                            "not verified: this step assumes {}, and rigor found no values that satisfy the facts with that: the facts may rule it out",
+                            side_conditions.join(" and ")
+                        ),
+                        input.span,
+                        "not verified",
+                    )
+                    .note("where the facts force a divisor to zero, the step says nothing; declare the signs that rule that out (`symbols g > 0`), or check the facts"),
+                );
+            }
+            return Status::Undecided;
+        }
         status
     }
 
@@ -98,6 +163,7 @@ impl Checker<'_, '_> {
         sit: &Situation<'_>,
         fixed: &HashMap<String, Q>,
         rng: &mut Rng,
+        excluded: &mut bool,
     ) -> Option<HashMap<String, f64>> {
         let env = &self.guard_env;
         let mut names: Vec<String> = guard::free_symbols(input.lhs_expr, env)
@@ -135,8 +201,9 @@ impl Checker<'_, '_> {
             exact.insert(a.0, Q::from_f64(v.mid)?);
         }
         // Atoms' values carry over from one evaluation to the next: the point only grows.
+        // The parameters the facts tie, once the unknowns are eliminated, come first.
         let mut memo = HashMap::new();
-        for s in sit.steps.iter().rev() {
+        for s in sit.params.iter().rev().chain(sit.steps.iter().rev()) {
             let mut ev = Evaluator::with_values(&exact, Prec::new(128), memo);
             let v = ev.rat(&s.value)?.midpoint();
             memo = ev.values();
@@ -152,12 +219,19 @@ impl Checker<'_, '_> {
         let holds = sit.facts.iter().all(|f| match ev.rat(&f.value) {
             Some(v) => v.lo() >= &-tiny.clone() && v.hi() <= &tiny,
             None => !sit.strict,
+        }) && sit.nonzero.iter().all(|d| match ev.rat(d) {
+            Some(v) => v.lo() > &tiny || v.hi() < &-tiny.clone(),
+            None => false,
         });
         let unknown_left = names.iter().any(|n| {
             let a = atom::sym(n);
             unknown_atom(&self.scope, a) && !exact.contains_key(&a)
         });
-        (holds && !(unknown_left && sit.via)).then_some(point)
+        if unknown_left && sit.via {
+            return None;
+        }
+        *excluded = !holds;
+        holds.then_some(point)
     }
 
     /// Whether the guard lets a refutation stand: at the counterexample (and the
@@ -170,7 +244,7 @@ impl Checker<'_, '_> {
     ) -> Result<(), Diagnostic> {
         let fixed: HashMap<String, Q> = values.iter().cloned().collect();
         let mut rng = Rng(0xC0FFEE);
-        let Some(point) = self.point(input, sit, &fixed, &mut rng) else {
+        let Some(point) = self.point(input, sit, &fixed, &mut rng, &mut false) else {
             return Ok(());
         };
         let env = &self.guard_env;
@@ -201,6 +275,12 @@ pub(super) struct Situation<'r> {
     pub via: bool,
     /// Whether a fact that cannot be evaluated at the point rules the point out.
     pub strict: bool,
+    /// Quantities that must be clearly nonzero at the point (the conditions a verified
+    /// link assumes).
+    pub nonzero: &'r [crate::normal::Rat],
+    /// Values of parameters that the facts tie once the unknowns are eliminated (from
+    /// [`super::solve::solve_for_point`]), evaluated before the steps.
+    pub params: &'r [Step],
 }
 
 impl<'r> Situation<'r> {
@@ -213,6 +293,8 @@ impl<'r> Situation<'r> {
                 .map_or(&[][..], |e| &e.steps[..]),
             via: red.is_some_and(|r| !r.via.is_empty()),
             strict: true,
+            nonzero: &[],
+            params: &[],
         }
     }
 }

@@ -72,6 +72,41 @@ impl Checker<'_, '_> {
         Some(out)
     }
 
+    /// Whether `value`, given to a symbol in `unit` (by `where` or `use … with`), is in
+    /// that unit; reports E0401 (bad input) if not. Where this file declares no units,
+    /// the value's unit is unknown and nothing is said.
+    pub(super) fn value_in_unit(
+        &mut self,
+        what: &str,
+        unit: &crate::units::Dim,
+        value: &Expr,
+    ) -> bool {
+        if self.units.is_empty() {
+            return true;
+        }
+        let Some(dims) = self.dims(&[value], value.span) else {
+            self.report.input_error = true;
+            return false;
+        };
+        let problem = match &dims[0] {
+            Err(p) => Some(p.clone()),
+            Ok(DimV::D(d)) if !d.same(unit) => Some(UnitProblem {
+                span: value.span,
+                message: format!("{what} (in {}) a value in {}", unit.si(), d.si()),
+                note: Some("a substitution must keep the units: the facts and claims that use it would mix quantities otherwise".into()),
+            }),
+            _ => None,
+        };
+        match problem {
+            Some(p) => {
+                self.report.input_error = true;
+                self.report.diagnostics.push(Self::unit_diagnostic(p));
+                false
+            }
+            None => true,
+        }
+    }
+
     /// A unit problem as a diagnostic.
     pub(super) fn unit_diagnostic(p: UnitProblem) -> Diagnostic {
         let mut d = Diagnostic::error("E0401", p.message, p.span, "inconsistent units");

@@ -156,6 +156,9 @@ pub struct Exports {
     /// Its `let` definitions, name → value as written: `use` imports claims, and names
     /// a definition as what it is.
     pub lets: HashMap<String, String>,
+    /// The units the file declares, name → unit: `use … with` must give each symbol a
+    /// value in its unit.
+    pub units: HashMap<String, crate::units::Dim>,
     /// The first input error of the file, if it has one.
     pub error: Option<String>,
 }

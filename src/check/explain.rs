@@ -295,6 +295,8 @@ impl Checker<'_, '_> {
                         steps: &steps,
                         via: false,
                         strict: false,
+                        nonzero: &[],
+                        params: &[],
                     };
                     if let Err(d) = self.counterexample_stands(input, &sit, &c.values) {
                         return with_notes(d, Vec::new());

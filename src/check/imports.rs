@@ -125,6 +125,12 @@ impl Checker<'_, '_> {
                 self.error("E0208", format!("{m} (in \"{path}\")"), a.value.span, "");
                 return None;
             }
+            if let Some(unit) = from.exports.units.get(name) {
+                let what = format!("`with` gives `{name}` of \"{path}\"");
+                if !self.value_in_unit(&what, unit, &a.value) {
+                    return None;
+                }
+            }
             subs.push((atom::sym(name), v));
         }
         Some(subs)

@@ -37,6 +37,7 @@ pub mod solve;
 mod step;
 mod terms;
 mod walk;
+mod zeros;
 
 pub(crate) use entry::normalise;
 pub use entry::{check_source, Exports, MemoryResolver, Options, Resolver, Source};

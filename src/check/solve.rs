@@ -635,11 +635,19 @@ fn sign_compatible(declared: Sign, value: Sign, is_zero: bool) -> bool {
 /// coefficients only, described. The answer does not depend on the order of the
 /// symbols' names: every solved symbol's final value is checked against its declared sign.
 pub fn contradiction(facts: &[Fact], signs: &Assumptions) -> Option<String> {
+    contradiction_in(facts, signs, 2)
+}
+
+/// [`contradiction`], then again with what the facts left force to zero over the reals
+/// added to them, `rounds` more times (`u^2 + v^2 = 0` and `(v - 1)^2 + u^2 = 0`
+/// contradict each other only through `v = 0` and `v = 1`).
+fn contradiction_in(facts: &[Fact], signs: &Assumptions, rounds: u32) -> Option<String> {
     let says_zero = |name: &str| format!("with the others, {name} says a nonzero quantity is zero");
+    let nonzero = |v: &Rat| super::zeros::definite_sign(v, signs).is_nonzero();
     let mut fs: Vec<Fact> = facts.to_vec();
     let mut solved: Vec<(AtomId, Rat, String)> = Vec::new();
     for _ in 0..=facts.len() {
-        if let Some(f) = fs.iter().find(|f| signs.rat(&f.value).is_nonzero()) {
+        if let Some(f) = fs.iter().find(|f| nonzero(&f.value)) {
             return Some(says_zero(&f.name));
         }
         let mut pick = None;
@@ -684,12 +692,19 @@ pub fn contradiction(facts: &[Fact], signs: &Assumptions) -> Option<String> {
         }
         solved.push((u, value, fact.name));
     }
-    if let Some(f) = fs.iter().find(|f| signs.rat(&f.value).is_nonzero()) {
+    if let Some(f) = fs.iter().find(|f| nonzero(&f.value)) {
         return Some(says_zero(&f.name));
     }
-    solved.into_iter().find_map(|(u, v, name)| {
+    // What the facts left force to zero over the reals (the base of a power, each
+    // square of a sum of squares) may be nonzero by the signs.
+    let implied = super::zeros::consequences(&fs, signs);
+    if let Some(f) = implied.iter().find(|f| nonzero(&f.value)) {
+        return Some(says_zero(&f.name));
+    }
+    let against_sign = solved.into_iter().find_map(|(u, v, name)| {
         let declared = signs.declared(u);
-        (!sign_compatible(declared, signs.rat(&v), v.is_zero())).then(|| {
+        let value = super::zeros::definite_sign(&v, signs);
+        (!sign_compatible(declared, value, v.is_zero())).then(|| {
             let x = unknown_name(u);
             let sign = match declared {
                 Sign::Pos => "> 0",
@@ -703,7 +718,73 @@ pub fn contradiction(facts: &[Fact], signs: &Assumptions) -> Option<String> {
                 crate::normal::print::plain(&v)
             )
         })
-    })
+    });
+    if against_sign.is_some() || rounds == 0 || implied.is_empty() {
+        return against_sign;
+    }
+    fs.extend(implied);
+    contradiction_in(&fs, signs, rounds - 1)
+}
+
+/// The facts solved one after another (each value substituted into the facts after
+/// it), for the guard's points: an unknown with any divisor (the point decides whether
+/// it is zero there), a parameter only without one, so that a parameter a fact ties
+/// (`I_O = m L^2/3`) gets its value from the others, while facts that hold only in a
+/// degenerate case (`g m L (3 I_A - m L^2) = 0`) stay unsolved. The steps, in order,
+/// and the facts left.
+pub fn solve_for_point(
+    facts: &[Fact],
+    is_unknown: &dyn Fn(AtomId) -> bool,
+    signs: &Assumptions,
+) -> (Vec<Step>, Vec<Fact>) {
+    let mut fs: Vec<Fact> = facts.to_vec();
+    let mut steps = Vec::new();
+    loop {
+        let mut pick = None;
+        'outer: for (i, f) in fs.iter().enumerate() {
+            let mut atoms = f.value.num().atoms();
+            atoms.sort_by(|a, b| {
+                is_unknown(*b)
+                    .cmp(&is_unknown(*a))
+                    .then_with(|| atom::cmp_atoms(*a, *b))
+            });
+            for u in atoms {
+                if atom::is_pi(u) || atom::sym_str(u).is_none() {
+                    continue;
+                }
+                let Ok(Some(s)) = setup(&f.value, u, signs) else {
+                    continue;
+                };
+                if s.divisor.is_none() || is_unknown(u) {
+                    if let Ok(sol) = finish(&s, signs) {
+                        pick = Some((i, u, sol.value));
+                        break 'outer;
+                    }
+                }
+            }
+        }
+        let Some((i, u, value)) = pick else {
+            return (steps, fs);
+        };
+        let fact = fs.remove(i);
+        fs = fs
+            .into_iter()
+            .filter_map(|f| match subst_atom(&f.value, u, &value, signs) {
+                Ok(v) if v.is_zero() => None,
+                Ok(v) => Some(Fact {
+                    value: v,
+                    name: f.name,
+                }),
+                Err(_) => Some(f),
+            })
+            .collect();
+        steps.push(Step {
+            unknown: u,
+            value,
+            fact: fact.name,
+            divisor: None,
+        });
+    }
 }
 
 /// The atoms that facts left over after an elimination still constrain. The facts are

@@ -16,6 +16,11 @@ use crate::normal::{Rat, Sign};
 use crate::syntax::ast::{BodyDef, Chain, Expr, File, Item, Label, RelOp, Span, StmtKind};
 use std::collections::HashMap;
 
+/// Facts in scope past which a new given is not checked against all the others for a
+/// contradiction (each check eliminates them all); claims still refuse contradictory
+/// facts they use.
+const MAX_FACTS_CHECKED: usize = 48;
+
 /// A fact in scope.
 #[derive(Clone, Debug)]
 pub(super) struct Known {
@@ -41,6 +46,9 @@ pub struct Checker<'l, 'o> {
     /// Labels of givens and claims that did not hold (or could not be read), with
     /// their line: a later `by [..]` citing one is not checked rather than an error.
     pub(super) failed_labels: HashMap<String, usize>,
+    /// The first given set aside because it contradicted the facts before it, as
+    /// messages name it (`[two] (line 7)`).
+    pub(super) contradicted: Option<String>,
     /// Names already reported: undeclared ones, and those a failed `use` would have
     /// defined (a `let` of the other file), with why (`undeclared (line 7)`). A later
     /// use is not checked, rather than a second error for the same mistake.
@@ -84,6 +92,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             facts: Vec::new(),
             labels: HashMap::new(),
             failed_labels: HashMap::new(),
+            contradicted: None,
             failed_names: HashMap::new(),
             exports: Exports::default(),
             body_coords: HashMap::new(),
@@ -155,6 +164,7 @@ impl<'l, 'o> Checker<'l, 'o> {
         self.exports
             .unknowns
             .extend(self.scope.unknowns.iter().cloned());
+        self.exports.units = self.units.clone();
         if self.report.input_error {
             self.exports.error = self
                 .report
@@ -462,12 +472,46 @@ impl<'l, 'o> Checker<'l, 'o> {
     }
 
     fn given(&mut self, label: Option<String>, chain: &Chain, span: Span, constraint: bool) {
-        if !self.given_facts(&label, chain, span, constraint) {
+        let before = self.facts.len();
+        let read = self.given_facts(&label, chain, span, constraint);
+        if !read || !self.consistent_with_earlier(before, span) {
             if let Some(l) = label {
                 let line = self.line(span);
                 self.failed_labels.insert(l, line);
             }
         }
+    }
+
+    /// Whether the facts from index `before` on are consistent with the earlier ones;
+    /// if not, they are taken back and the contradiction is reported (E0306), once, at
+    /// the statement that brought it in. Facts that contradict each other would prove
+    /// anything, whatever the names.
+    fn consistent_with_earlier(&mut self, before: usize, span: Span) -> bool {
+        if self.facts.len() == before || self.facts.len() > MAX_FACTS_CHECKED {
+            return true;
+        }
+        let values: Vec<Fact> = self.facts.iter().map(|k| k.fact.clone()).collect();
+        let Some(why) = super::solve::contradiction(&values, &self.env.signs) else {
+            return true;
+        };
+        let line = self.line(span);
+        let name = self.facts[before].label.as_ref().map_or_else(
+            || format!("the given at line {line}"),
+            |l| format!("[{l}] (line {line})"),
+        );
+        self.contradicted.get_or_insert(name);
+        self.facts.truncate(before);
+        self.report.diagnostics.push(
+            Diagnostic::error(
+                "E0306",
+                format!("the facts contradict each other: {why}"),
+                span,
+                "no real values satisfy the facts with this one",
+            )
+            .note("nothing can be verified from contradictory facts; this fact is not used (check the givens and the declared signs)"),
+        );
+        self.report.input_error = true;
+        false
     }
 
     /// The facts of a given or constraint; `false` when it could not be read (the
@@ -500,7 +544,9 @@ impl<'l, 'o> Checker<'l, 'o> {
                     prev = rhs;
                     continue;
                 }
-                if sign_of(&value, &self.env.signs).is_nonzero() {
+                if sign_of(&value, &self.env.signs).is_nonzero()
+                    || super::zeros::never_zero(&value, &self.env.signs)
+                {
                     self.report.diagnostics.push(Diagnostic::error(
                         "E0306",
                         format!(

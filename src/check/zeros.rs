@@ -1,0 +1,262 @@
+//! What the facts force to be zero over the reals, beyond linear elimination: the
+//! consequences a divisor's safety and the facts' consistency are judged with.
+//!
+//! - A power is zero only where its base is: a fact is replaced by its squarefree part
+//!   (`cos(theta)^2 = 0` gives `cos(theta) = 0`; a kept factor `(q + 1)^64 = 0` gives
+//!   `q + 1 = 0`).
+//! - A sum of squares with positive weights is zero only where each square's base is: a
+//!   fact is split by completing the square in one atom after another (`u^2 + v^2 = 0`
+//!   gives `u = 0` and `v = 0`; `(v - 1)^2 + u^2 = 0` gives `v = 1` and `u = 0`), and
+//!   one that completes to a strictly positive sum can never hold (`m (v - w)^2/2 + k`
+//!   with `m, k > 0`).
+//! - `sin(u)^2 + cos(u)^2 = 1` for one angle is already in the normal form (`cos(u)^2` is
+//!   written `1 - sin(u)^2`), so a quantity is tested together with its square: given
+//!   `sin(theta) = 1`, `cos(theta)^2` is `1 - sin(theta)^2 = 0`, so `cos(theta) = 0`.
+//!
+//! Every consequence is an exact identity over the reals; nothing here is sampled.
+
+use super::solve::{zero_by_facts, Fact};
+use crate::normal::atom;
+use crate::normal::{Assumptions, Poly, Rat, Sign};
+
+/// Nesting of square completions tried on one fact (one per atom completed).
+const DEPTH: usize = 6;
+
+/// Facts past which the consequences are not looked for (each costs a gcd).
+const MAX_FACTS: usize = 64;
+
+/// Terms of a fact or quantity past which its squarefree part and squares are not
+/// looked for.
+const MAX_TERMS: usize = 200;
+
+/// Degree in one atom past which the squarefree part of a sum is not looked for.
+const MAX_DEGREE: u32 = 64;
+
+/// A fact's numerator as a sum of weighted squares plus a rest of known sign.
+struct Squares {
+    /// The bases: `p = Σ wᵢ bᵢ² + rest` with every weight positive.
+    bases: Vec<Poly>,
+    /// The rest's sign: `Pos` (so `p > 0`), or `NonNeg`.
+    rest: Sign,
+    /// The rest itself, when it is not known to be positive.
+    rest_value: Poly,
+}
+
+/// `p` (a polynomial the signs cannot place) shown `>= 0` by completing squares: in an
+/// atom `x` of degree 2 whose leading coefficient `a` is positive,
+/// `p = a x^2 + b x + c = (2 a x + b)^2/(4 a) + (4 a c - b^2)/(4 a)`, and the rest is
+/// placed the same way, one atom after another.
+fn squares(p: &Poly, signs: &Assumptions, depth: usize) -> Option<Squares> {
+    let s = signs.poly(p);
+    if s == Sign::Pos || s == Sign::NonNeg || s == Sign::Zero {
+        return Some(Squares {
+            bases: Vec::new(),
+            rest: if s == Sign::Pos {
+                Sign::Pos
+            } else {
+                Sign::NonNeg
+            },
+            rest_value: p.clone(),
+        });
+    }
+    if depth == 0 {
+        return None;
+    }
+    let mut atoms = p.atoms();
+    atoms.sort_by(|a, b| atom::cmp_atoms(*a, *b));
+    for x in atoms {
+        if atom::is_pi(x) || p.degree_in(x) != 2 {
+            continue;
+        }
+        let coeff = |k: u32| {
+            p.coeffs_in(x)
+                .into_iter()
+                .find(|(e, _)| *e == k)
+                .map_or_else(Poly::zero, |(_, c)| c)
+        };
+        let (a, b, c) = (coeff(2), coeff(1), coeff(0));
+        if signs.poly(&a) != Sign::Pos {
+            continue;
+        }
+        let four_a = a.scale(&crate::normal::Q::from_integer(4.into()));
+        let Ok(four_ac) = four_a.mul(&c) else {
+            continue;
+        };
+        let Ok(b2) = b.mul(&b) else {
+            continue;
+        };
+        let Ok(base) = a
+            .scale(&crate::normal::Q::from_integer(2.into()))
+            .mul(&Poly::atom(x))
+        else {
+            continue;
+        };
+        let base = base.add(&b);
+        if let Some(mut rest) = squares(&four_ac.sub(&b2), signs, depth - 1) {
+            rest.bases.push(base);
+            return Some(rest);
+        }
+    }
+    None
+}
+
+/// Whether the squarefree part of `p` is cheap to find: a few terms of low degree (a
+/// kept factor's large power is one term).
+fn affordable(p: &Poly) -> bool {
+    p.len() == 1
+        || p.len() <= MAX_TERMS && p.atoms().into_iter().all(|a| p.degree_in(a) <= MAX_DEGREE)
+}
+
+/// The squares of `p` or of `-p`.
+fn squares_either(p: &Poly, signs: &Assumptions) -> Option<Squares> {
+    if p.len() > MAX_TERMS {
+        return None;
+    }
+    squares(p, signs, DEPTH).or_else(|| squares(&p.neg(), signs, DEPTH))
+}
+
+/// Whether the fact `value = 0` can never hold: its numerator is a sum of weighted
+/// squares plus a positive rest (or the negative of one).
+pub fn never_zero(value: &Rat, signs: &Assumptions) -> bool {
+    let n = value.num();
+    !n.is_zero() && squares_either(n, signs).is_some_and(|s| s.rest == Sign::Pos)
+}
+
+/// The facts that follow from `facts` over the reals by the rules of this module (not
+/// the facts themselves), each named after the fact it came from.
+pub fn consequences(facts: &[Fact], signs: &Assumptions) -> Vec<Fact> {
+    let mut out: Vec<Fact> = Vec::new();
+    if facts.len() > MAX_FACTS {
+        return out;
+    }
+    let push = |value: Rat, name: &str, out: &mut Vec<Fact>| {
+        if !value.is_zero() && !out.iter().any(|f| f.value == value) {
+            out.push(Fact {
+                value,
+                name: name.to_string(),
+            });
+        }
+    };
+    for f in facts {
+        let n = f.value.num();
+        if n.atoms().is_empty() || !affordable(n) {
+            continue;
+        }
+        // A power is zero only where its base is. Kept factors (large powers of sums)
+        // are atoms here, so the radical holds each once and writing it out is cheap.
+        if let Ok(parts) = crate::normal::gcd::squarefree(n) {
+            let mut radical = Poly::one();
+            for (part, _) in &parts {
+                match radical.mul(part) {
+                    Ok(r) => radical = r,
+                    Err(_) => break,
+                }
+            }
+            let written = Rat::poly(radical).and_then(|r| crate::normal::power::expand(&r, signs));
+            if let Ok(r) = written {
+                if r != f.value {
+                    push(r, &f.name, &mut out);
+                }
+            }
+        }
+        if crate::normal::power::has_kept(&f.value) {
+            continue;
+        }
+        // A sum of weighted squares is zero only where each base is.
+        if let Some(sq) = squares_either(n, signs) {
+            for b in sq.bases {
+                if let Ok(r) = Rat::poly(b) {
+                    push(r, &f.name, &mut out);
+                }
+            }
+            if sq.rest == Sign::NonNeg && !sq.rest_value.atoms().is_empty() {
+                for t in nonnegative_terms(&sq.rest_value, signs) {
+                    push(t, &f.name, &mut out);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// A rest of nonnegative terms is zero only where each term is: a term that is a
+/// positive number times one atom's power gives that atom = 0.
+fn nonnegative_terms(p: &Poly, signs: &Assumptions) -> Vec<Rat> {
+    let each_nonneg = p.terms().iter().all(|(m, q)| {
+        let t = Poly::term(m.clone(), q.clone());
+        signs.poly(&t).is_nonneg()
+    });
+    if !each_nonneg || p.len() < 2 {
+        return Vec::new();
+    }
+    p.terms()
+        .iter()
+        .filter_map(|(m, _)| match m.pairs() {
+            [(a, _)] => Some(Rat::atom(*a)),
+            _ => None,
+        })
+        .collect()
+}
+
+/// Whether `d` is zero wherever the facts hold: by elimination with the facts and their
+/// consequences, for `d`, for its squarefree part, and for its square (which brings in
+/// `sin^2 + cos^2 = 1`).
+pub fn forced_zero(d: &Rat, facts: &[Fact], signs: &Assumptions) -> bool {
+    if zero_by_facts(d, facts, signs) {
+        return true;
+    }
+    if d.num().atoms().is_empty() || facts.is_empty() {
+        return false;
+    }
+    let mut all: Vec<Fact> = facts.to_vec();
+    all.extend(consequences(facts, signs));
+    let mut candidates: Vec<Rat> = vec![d.clone()];
+    if affordable(d.num()) {
+        if let Ok(parts) = crate::normal::gcd::squarefree(d.num()) {
+            candidates.extend(parts.into_iter().filter_map(|(p, _)| {
+                Rat::poly(p)
+                    .and_then(|r| crate::normal::power::expand(&r, signs))
+                    .ok()
+            }));
+        }
+    }
+    let squares: Vec<Rat> = candidates.iter().filter_map(|c| c.mul(c).ok()).collect();
+    candidates.extend(squares);
+    candidates
+        .iter()
+        .any(|c| !c.num().atoms().is_empty() && zero_by_facts(c, &all, signs))
+}
+
+/// The sign of `r` from the declared signs, and where they cannot place it, from its
+/// numerator completed to weighted squares (`m v^2/2 - m v w + m w^2/2 + k` is positive
+/// for `m, k > 0`).
+pub fn definite_sign(r: &Rat, signs: &Assumptions) -> Sign {
+    let s = signs.rat(r);
+    if s != Sign::Unknown {
+        return s;
+    }
+    let den = signs.poly(r.den());
+    if !matches!(den, Sign::Pos | Sign::Neg) {
+        return Sign::Unknown;
+    }
+    let n = r.num();
+    if n.len() > MAX_TERMS || crate::normal::power::has_kept(r) {
+        return Sign::Unknown;
+    }
+    let num = if let Some(sq) = squares(n, signs, DEPTH) {
+        if sq.rest == Sign::Pos {
+            Sign::Pos
+        } else {
+            Sign::NonNeg
+        }
+    } else if let Some(sq) = squares(&n.neg(), signs, DEPTH) {
+        if sq.rest == Sign::Pos {
+            Sign::Neg
+        } else {
+            Sign::NonPos
+        }
+    } else {
+        Sign::Unknown
+    };
+    num.times(den)
+}
