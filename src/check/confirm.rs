@@ -85,6 +85,20 @@ impl Checker<'_, '_> {
             Vec::new()
         };
         let base = Situation::of(red);
+        let is_unknown = |a: AtomId| unknown_atom(&self.scope, a);
+        // A parameter the elimination set to zero by dividing (`g = 0` from
+        // `g m L (3 I_A - m L^2) = 0`, assuming `3 I_A - m L^2 != 0`) is not taken from
+        // it: the facts leave the condition room only where that parameter vanishes,
+        // and a point must show room with the parameters as given.
+        let steps: Vec<Step> = if nonzero.is_empty() {
+            base.steps.to_vec()
+        } else {
+            base.steps
+                .iter()
+                .filter(|s| is_unknown(s.unknown) || s.divisor.is_none() || !s.value.is_zero())
+                .cloned()
+                .collect()
+        };
         let params: Vec<Step> = if nonzero.is_empty() {
             Vec::new()
         } else {
@@ -92,19 +106,19 @@ impl Checker<'_, '_> {
                 .facts
                 .iter()
                 .filter_map(|f| {
-                    let v = super::solve::apply_steps(&f.value, base.steps, signs).ok()?;
+                    let v = super::solve::apply_steps(&f.value, &steps, signs).ok()?;
                     (!v.is_zero()).then(|| Fact {
                         value: v,
                         name: f.name.clone(),
                     })
                 })
                 .collect();
-            let is_unknown = |a: AtomId| unknown_atom(&self.scope, a);
             super::solve::solve_for_point(&left, &is_unknown, signs).0
         };
         let sit = Situation {
             nonzero: &nonzero,
             params: &params,
+            steps: &steps,
             ..base
         };
         // Whether every point tried was ruled out by the facts or the conditions (not
