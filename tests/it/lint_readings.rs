@@ -2,7 +2,8 @@
 //! is a derivative, `\Delta x` one symbol, a declared `e` that symbol, `\cos\omega t`
 //! the cosine of a product, `\times` between quantities a cross product. Each note in
 //! `tests/lint/readings_*.md` has one chain per reading; each chain's verdict is
-//! asserted at its line.
+//! asserted at its line. `tests/lint/zero_divisors.md`: divisors that the stated
+//! relations force to zero through an identity (issue 27, item 1).
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -108,4 +109,23 @@ fn times_between_quantities_is_a_cross_product_and_needs_context() {
         &[(5, "needs context"), (9, "verified"), (11, "verified")],
         0,
     );
+}
+
+#[test]
+fn a_divisor_the_stated_relations_force_to_zero_is_never_assumed_nonzero() {
+    // sin(theta) = 1 makes cos(theta) zero (sin^2 + cos^2 = 1), and u^2 + v^2 = 0 makes
+    // u zero: dividing the moment balance by either proves nothing about R_A. Before
+    // issue 27 both were "verified, assuming … != 0".
+    let note = "tests/lint/zero_divisors.md";
+    let all: Vec<(usize, &str)> = [7, 11, 15, 21, 23, 25]
+        .into_iter()
+        .map(|l| (l, "needs context"))
+        .collect();
+    expect(note, &all, 0);
+    let (_, _, text) = verdicts(note);
+    for line in [15, 25] {
+        let at = format!("{note}:{line}:3: needs context: not verified: solving the facts");
+        assert!(text.contains(&at), "{at}\n{text}");
+        assert!(text.contains("which the facts make zero"), "{text}");
+    }
 }
