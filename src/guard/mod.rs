@@ -243,5 +243,16 @@ fn free(e: &Expr, env: &GuardEnv, bound: &mut Vec<String>, out: &mut HashSet<Str
     }
 }
 
+/// One step of splitmix64, the small deterministic generator behind the points the guard
+/// is tried at (`check/confirm.rs`) and the differential test's random pairs: the same
+/// sequence on every platform and in every run. The one copy of it in the repository.
+pub fn splitmix64(state: &mut u64) -> u64 {
+    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    let mut z = *state;
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
 #[cfg(test)]
 mod tests;

@@ -1,3 +1,6 @@
+//! Tests of the guard: integrals, derivatives and bodies evaluated in ball arithmetic, odd
+//! and even roots, identities under cancellation, what it skips, and its depth budget.
+
 use super::*;
 use crate::syntax::{parse_expr, parse_file, ParseOptions};
 

@@ -1,5 +1,9 @@
-//! Fraction-free (Bareiss) elimination over polynomials, fraction-free back
-//! substitution, and gcd-reduced results: `x_i = num_i / det`, each in lowest terms.
+//! Square linear systems over polynomials by Cramer's rule, one fraction-free (Bareiss)
+//! determinant per numerator, and gcd-reduced results: `x_i = num_i / det`, each in
+//! lowest terms.
+//!
+//! The checker does not use this solver (it eliminates fact by fact, `check/solve.rs`);
+//! it is the library's solver and the one the benchmarks time.
 
 use crate::normal::gcd::{div_exact, gcd};
 use crate::normal::mono::Mono;

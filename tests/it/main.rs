@@ -22,6 +22,7 @@ mod props;
 mod readme;
 mod repository;
 mod soundness;
+mod tidy;
 mod views;
 mod web;
 mod workloads;

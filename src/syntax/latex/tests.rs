@@ -1,3 +1,6 @@
+//! Tests of the LaTeX reader: each LaTeX form against the tree of rigor's own syntax it
+//! means, spans, errors, and the physicist's readings of `physics.rs`.
+
 use super::*;
 use crate::syntax::parse_expr;
 
