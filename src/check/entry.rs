@@ -18,6 +18,9 @@ use std::time::Duration;
 pub struct Options {
     /// Parser limits.
     pub parse: ParseOptions,
+    /// The engine's size limits (terms, digits), installed on the checking thread for
+    /// the whole check.
+    pub limits: crate::normal::limits::Limits,
     /// Wall-clock budget per claim (only where there is a clock).
     pub timeout: Duration,
     /// Wall-clock budget for all the claims of one file (`rigor mark` gives each
@@ -38,6 +41,7 @@ impl Default for Options {
     fn default() -> Options {
         Options {
             parse: ParseOptions::default(),
+            limits: crate::normal::limits::Limits::DEFAULT,
             timeout: Duration::from_secs(10),
             file_budget: None,
             max_file_size: 10_000_000,
@@ -230,6 +234,11 @@ pub fn check_source(
     options: &Options,
     resolver: &dyn Resolver,
 ) -> FileReport {
+    // This thread's limits are the options' until the check returns (or unwinds); its
+    // time budgets are the options' too (each claim installs its own deadline), not a
+    // deadline the caller may have set.
+    let _limits = crate::normal::limits::install(options.limits);
+    let _deadline = crate::normal::limits::until(None);
     let display = name.rsplit(['/', '\\']).next().unwrap_or(name).to_string();
     let mut loader = Loader {
         resolver,

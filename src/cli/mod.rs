@@ -47,9 +47,26 @@ fn report_syntax(e: &SyntaxError, what: &str, src: &str) {
 }
 
 fn report_lower(e: &LowerError, what: &str, src: &str) {
-    let code = if e.limit { "E0901" } else { "E0101" };
-    let d = Diagnostic::error(code, e.message.clone(), e.span, "");
+    let code = if e.limit().is_some() {
+        "E0901"
+    } else {
+        "E0101"
+    };
+    let message = format!("{e}{}", e.limit().map_or("", flag_of));
+    let d = Diagnostic::error(code, message, e.span, "");
     err!("{}", diag::render(&d, what, src));
+}
+
+/// The flag that sets a limit, as the command line says it after the library's message
+/// (which says the limit but not how to change it).
+pub fn flag_of(l: rigor::normal::Limit) -> &'static str {
+    use rigor::normal::Limit;
+    match l {
+        Limit::Terms(_) => " (see --max-terms)",
+        Limit::Digits(_) => " (see --max-digits)",
+        Limit::Time => " (see --timeout)",
+        Limit::Exponent | Limit::RootIndex => "",
+    }
 }
 
 /// The environment of `--assume` and `--body` options: the exact engine's, and the
@@ -213,7 +230,7 @@ fn lower_arg(text: &str, what: &str, env: &Env, opts: &ParseOptions) -> Result<L
     let mut lw = Lowerer::new(env);
     let r = lw.lower(&e).map_err(|e| {
         report_lower(&e, what, text);
-        if e.timeout {
+        if e.timed_out() {
             TIMED_OUT.store(true, std::sync::atomic::Ordering::Relaxed);
         }
     })?;
@@ -409,6 +426,8 @@ pub fn check(
     };
     let options = rigor::check::Options {
         parse: *opts,
+        // The limits `main` installed on this thread, for the checking threads too.
+        limits: rigor::normal::limits::current(),
         timeout,
         max_file_size,
         file_budget: None,
@@ -461,6 +480,8 @@ pub fn document(
 ) -> u8 {
     let options = rigor::check::Options {
         parse: *opts,
+        // The limits `main` installed on this thread, for the checking threads too.
+        limits: rigor::normal::limits::current(),
         ..rigor::check::Options::default()
     };
     let mut reports = rigor::files::check_paths(&[file.to_path_buf()], &options);
@@ -576,6 +597,8 @@ pub fn lint(
     use rigor::lint::{DocKind, Verdict};
     let options = rigor::check::Options {
         parse: *opts,
+        // The limits `main` installed on this thread, for the checking threads too.
+        limits: rigor::normal::limits::current(),
         timeout,
         ..rigor::check::Options::default()
     };
@@ -631,6 +654,8 @@ pub fn mark(
     use rigor::files::FsResolver;
     let options = rigor::check::Options {
         parse: *opts,
+        // The limits `main` installed on this thread, for the checking threads too.
+        limits: rigor::normal::limits::current(),
         timeout,
         ..rigor::check::Options::default()
     };
