@@ -40,6 +40,6 @@ mod walk;
 mod zeros;
 
 pub(crate) use entry::normalise;
-pub use entry::{check_source, Exports, MemoryResolver, Options, Resolver, Source};
+pub use entry::{check_source, Exports, ImportError, MemoryResolver, Options, Resolver, Source};
 pub use report::{cite, ClaimReport, FileReport, Justification, LinkReport, Status};
 pub use signs::interval;

@@ -370,3 +370,88 @@ fn checks_on_two_threads_with_different_limits_do_not_see_each_others() {
         assert!(ok, "{msgs:?}");
     }
 }
+
+#[test]
+fn a_resolver_says_why_an_import_cannot_be_had() {
+    use rigor::check::{ImportError, Resolver};
+    use rigor::files::FsResolver;
+    let mut files = MemoryResolver::new();
+    files.insert("lib/rod.deriv", ROD);
+    assert!(files.resolve("main.deriv", "lib/rod.deriv").is_ok());
+    let cases = [
+        (
+            "/etc/rod.deriv",
+            ImportError::Absolute {
+                path: "/etc/rod.deriv".into(),
+            },
+        ),
+        (
+            "../rod.deriv",
+            ImportError::OutsideRoot {
+                path: "../rod.deriv".into(),
+            },
+        ),
+        (
+            "lib/none.deriv",
+            ImportError::NotFound {
+                path: "lib/none.deriv".into(),
+                reason: None,
+            },
+        ),
+    ];
+    for (path, want) in cases {
+        assert_eq!(files.resolve("main.deriv", path), Err(want), "{path}");
+    }
+    // The messages are the ones shown at the path.
+    assert_eq!(
+        files
+            .resolve("main.deriv", "x.deriv")
+            .unwrap_err()
+            .to_string(),
+        "cannot read \"x.deriv\": no such file"
+    );
+    let dir = crate::cli::scratch("import-errors");
+    std::fs::create_dir_all(dir.join("sub")).unwrap();
+    std::fs::write(dir.join("sub/rod.deriv"), ROD).unwrap();
+    std::fs::write(dir.join("sub/latin1.deriv"), b"% caf\xe9\n").unwrap();
+    std::fs::write(dir.join("outside.deriv"), ROD).unwrap();
+    let fs = FsResolver {
+        root: dir.join("sub"),
+        max_file_size: 100,
+    };
+    let main = dir.join("sub/main.deriv").display().to_string();
+    assert!(matches!(
+        fs.resolve(&main, "rod.deriv"),
+        Err(ImportError::TooLarge { size, max: 100, .. }) if size == ROD.len() as u64
+    ));
+    assert!(matches!(
+        fs.resolve(&main, "none.deriv"),
+        Err(ImportError::NotFound {
+            reason: Some(_),
+            ..
+        })
+    ));
+    assert_eq!(
+        fs.resolve(&main, "latin1.deriv"),
+        Err(ImportError::NotUtf8 {
+            path: "latin1.deriv".into(),
+            offset: 5
+        })
+    );
+    assert_eq!(
+        fs.resolve(&main, "../outside.deriv"),
+        Err(ImportError::OutsideRoot {
+            path: "../outside.deriv".into()
+        })
+    );
+    // A folder is there but is not a file.
+    let fs = FsResolver {
+        max_file_size: 10_000_000,
+        ..fs
+    };
+    assert!(matches!(
+        fs.resolve(&main, "."),
+        Err(ImportError::Unreadable { .. })
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+}
