@@ -57,6 +57,23 @@ fn report_lower(e: &LowerError, what: &str, src: &str) {
     err!("{}", diag::render(&d, what, src));
 }
 
+/// Adds the flag that sets it to each message that is exactly the library's refusal at
+/// one of this thread's size limits (the library says the limit, not the flag).
+fn name_the_flags(reports: &mut [FileReport]) {
+    use rigor::normal::{limits, Limit, NormError};
+    let now = limits::current();
+    let refusals = [Limit::Terms(now.max_terms), Limit::Digits(now.max_digits)]
+        .map(|l| (NormError::Limit(l).to_string(), flag_of(l)));
+    for d in reports.iter_mut().flat_map(|r| r.diagnostics.iter_mut()) {
+        if let Some((_, flag)) = refusals
+            .iter()
+            .find(|(m, _)| d.code == "E0901" && d.message == *m)
+        {
+            d.message.push_str(flag);
+        }
+    }
+}
+
 /// The flag that sets a limit, as the command line says it after the library's message
 /// (which says the limit but not how to change it).
 pub fn flag_of(l: rigor::normal::Limit) -> &'static str {
@@ -434,7 +451,8 @@ pub fn check(
         clock: rigor::clock::system(),
         corrupt_for_tests: false,
     };
-    let reports = rigor::files::check_paths(paths, &options);
+    let mut reports = rigor::files::check_paths(paths, &options);
+    name_the_flags(&mut reports);
     match format {
         Format::Human => {
             for r in &reports {

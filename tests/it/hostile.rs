@@ -368,7 +368,7 @@ fn the_term_limit_flag_reaches_simplify_equiv_and_the_checking_threads() {
     expect(
         &["check", "--max-terms", "20", &p],
         2,
-        "refused: the result would have more than the limit of 20 terms",
+        "refused: the result would have more than the limit of 20 terms (see --max-terms)",
         GUARD,
     );
     let _ = std::fs::remove_dir_all(&dir);
