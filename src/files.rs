@@ -3,7 +3,7 @@
 //! and the walk over files and folders, two files at a time. The checker itself
 //! ([`crate::check_source`]) never touches the file system.
 
-use crate::check::{check_source, FileReport, Options, Resolver, Source};
+use crate::check::{check_source, FileReport, ImportError, Options, Resolver, Source};
 use crate::diag::Diagnostic;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -18,29 +18,24 @@ pub struct FsResolver {
 }
 
 impl Resolver for FsResolver {
-    fn resolve(&self, importer: &str, path: &str) -> Result<Source, String> {
+    fn resolve(&self, importer: &str, path: &str) -> Result<Source, ImportError> {
         let rel = Path::new(path);
         if rel.is_absolute() {
-            return Err(format!(
-                "`use` takes a path relative to the importing file, not the absolute path \"{path}\""
-            ));
+            return Err(ImportError::Absolute { path: path.into() });
         }
         let from_dir = Path::new(importer).parent().unwrap_or(Path::new(""));
         let joined = from_dir.join(rel);
         let canon = joined
             .canonicalize()
-            .map_err(|e| format!("cannot read \"{path}\": {e}"))?;
+            .map_err(|e| ReadError::Io(e).import(path))?;
         let root = self
             .root
             .canonicalize()
             .unwrap_or_else(|_| self.root.clone());
         if !canon.starts_with(&root) {
-            return Err(format!(
-                "\"{path}\" is outside the folder being checked; imports must stay inside it"
-            ));
+            return Err(ImportError::OutsideRoot { path: path.into() });
         }
-        let text =
-            read(&canon, self.max_file_size).map_err(|e| format!("cannot read \"{path}\": {e}"))?;
+        let text = read_text(&canon, self.max_file_size).map_err(|e| e.import(path))?;
         Ok(Source {
             display: canon.file_name().map_or_else(
                 || canon.display().to_string(),
@@ -58,22 +53,66 @@ impl Resolver for FsResolver {
     }
 }
 
-/// The text of `path`, at most `max` bytes of UTF-8.
-pub fn read(path: &Path, max: u64) -> Result<String, String> {
-    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
-    if meta.len() > max {
-        return Err(format!(
-            "the file is {} bytes, more than the limit of {max} (see --max-file-size)",
-            meta.len()
-        ));
+/// Why a file could not be read.
+enum ReadError {
+    TooLarge { size: u64, max: u64 },
+    NotUtf8 { offset: usize },
+    Io(std::io::Error),
+}
+
+impl ReadError {
+    /// The error of a `use` of `path` that found this.
+    fn import(self, path: &str) -> ImportError {
+        let path = path.to_string();
+        match self {
+            ReadError::TooLarge { size, max } => ImportError::TooLarge { path, size, max },
+            ReadError::NotUtf8 { offset } => ImportError::NotUtf8 { path, offset },
+            ReadError::Io(e) if e.kind() == std::io::ErrorKind::NotFound => ImportError::NotFound {
+                path,
+                reason: Some(e.to_string()),
+            },
+            ReadError::Io(e) => ImportError::Unreadable {
+                path,
+                reason: e.to_string(),
+            },
+        }
     }
-    let bytes = std::fs::read(path).map_err(|e| e.to_string())?;
-    String::from_utf8(bytes).map_err(|e| {
-        format!(
-            "the file is not valid UTF-8 (invalid byte at offset {})",
-            e.utf8_error().valid_up_to()
-        )
+}
+
+impl std::fmt::Display for ReadError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ReadError::TooLarge { size, max } => write!(
+                f,
+                "the file is {size} bytes, more than the limit of {max} (see --max-file-size)"
+            ),
+            ReadError::NotUtf8 { offset } => write!(
+                f,
+                "the file is not valid UTF-8 (invalid byte at offset {offset})"
+            ),
+            ReadError::Io(e) => e.fmt(f),
+        }
+    }
+}
+
+/// The text of `path`, at most `max` bytes of UTF-8.
+fn read_text(path: &Path, max: u64) -> Result<String, ReadError> {
+    let meta = std::fs::metadata(path).map_err(ReadError::Io)?;
+    if meta.len() > max {
+        return Err(ReadError::TooLarge {
+            size: meta.len(),
+            max,
+        });
+    }
+    let bytes = std::fs::read(path).map_err(ReadError::Io)?;
+    String::from_utf8(bytes).map_err(|e| ReadError::NotUtf8 {
+        offset: e.utf8_error().valid_up_to(),
     })
+}
+
+/// The text of `path`, at most `max` bytes of UTF-8; the error is the message to show.
+pub fn read(path: &Path, max: u64) -> Result<String, String> {
+    read_text(path, max).map_err(|e| e.to_string())
 }
 
 fn collect(path: &Path, out: &mut Vec<(PathBuf, PathBuf)>, root: &Path) -> Result<(), String> {

@@ -5,7 +5,7 @@
 use crate::calculus::{self, Body, IntError, Wrt};
 use crate::normal::atom::{self, Atom, AtomId};
 use crate::normal::subst::{depends_on, subst_atom};
-use crate::normal::{func, trig, Assumptions, NormError, Rat, Sign};
+use crate::normal::{func, trig, Assumptions, Limit, NormError, Rat, Sign};
 use crate::syntax::ast::{BinOp, Expr, ExprKind, Func, Reading, Span};
 use num_integer::Integer;
 use num_traits::{Signed, ToPrimitive};
@@ -30,29 +30,60 @@ pub struct Env {
 pub struct LowerError {
     /// Where.
     pub span: Span,
-    /// What went wrong (a full sentence fragment, e.g. "division by …").
-    pub message: String,
-    /// Whether this is a resource limit (rather than bad input).
-    pub limit: bool,
+    /// What went wrong.
+    pub kind: LowerErrorKind,
+}
+
+/// What went wrong while lowering.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum LowerErrorKind {
+    /// A resource limit: a size limit refuses the input (E0901); [`Limit::Time`], the
+    /// time budget ran out (the claim is undecided, not bad input).
+    Limit(Limit),
+    /// The engine refused a value: division by zero, `0^0`, a value outside a
+    /// function's domain (never [`NormError::Limit`]: that is [`LowerErrorKind::Limit`]).
+    Engine(NormError),
+    /// An integral rigor does not compute (never [`IntError::Norm`]).
+    Integral(IntError),
+    /// Input that means nothing here (an unknown body, a derivative with respect to a
+    /// number, …); the text says what, a full sentence fragment.
+    Invalid(String),
+}
+
+impl LowerError {
+    /// The resource limit the lowering ran into, if that is what went wrong.
+    pub fn limit(&self) -> Option<Limit> {
+        match self.kind {
+            LowerErrorKind::Limit(l) => Some(l),
+            _ => None,
+        }
+    }
+
     /// Whether the time budget ran out (the claim is undecided, not bad input).
-    pub timeout: bool,
+    pub fn timed_out(&self) -> bool {
+        self.limit() == Some(Limit::Time)
+    }
 }
 
 impl fmt::Display for LowerError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.message)
+        match &self.kind {
+            LowerErrorKind::Limit(l) => NormError::Limit(*l).fmt(f),
+            LowerErrorKind::Engine(e) => e.fmt(f),
+            LowerErrorKind::Integral(e) => e.fmt(f),
+            LowerErrorKind::Invalid(m) => f.write_str(m),
+        }
     }
 }
 
 impl std::error::Error for LowerError {}
 
 fn err(span: Span, e: NormError) -> LowerError {
-    LowerError {
-        span,
-        limit: matches!(e, NormError::Limit(_)),
-        timeout: e == NormError::Limit(crate::normal::Limit::Time),
-        message: e.to_string(),
-    }
+    let kind = match e {
+        NormError::Limit(l) => LowerErrorKind::Limit(l),
+        e => LowerErrorKind::Engine(e),
+    };
+    LowerError { span, kind }
 }
 
 fn int_err(span: Span, e: IntError) -> LowerError {
@@ -60,9 +91,7 @@ fn int_err(span: Span, e: IntError) -> LowerError {
         IntError::Norm(n) => err(span, n),
         e => LowerError {
             span,
-            message: e.to_string(),
-            limit: false,
-            timeout: false,
+            kind: LowerErrorKind::Integral(e),
         },
     }
 }
@@ -70,9 +99,7 @@ fn int_err(span: Span, e: IntError) -> LowerError {
 fn msg(span: Span, m: impl Into<String>) -> LowerError {
     LowerError {
         span,
-        message: m.into(),
-        limit: false,
-        timeout: false,
+        kind: LowerErrorKind::Invalid(m.into()),
     }
 }
 

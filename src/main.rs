@@ -12,13 +12,13 @@ struct Cli {
     #[command(subcommand)]
     command: Command,
     /// Largest number of terms any intermediate polynomial may have.
-    #[arg(long, global = true, default_value_t = 200_000)]
+    #[arg(long, global = true, default_value_t = rigor::normal::limits::Limits::DEFAULT.max_terms)]
     max_terms: usize,
     /// Deepest nesting of parentheses and calls accepted.
     #[arg(long, global = true, default_value_t = 200)]
     max_depth: usize,
     /// Largest number of decimal digits a power may produce.
-    #[arg(long, global = true, default_value_t = 120_000)]
+    #[arg(long, global = true, default_value_t = rigor::normal::limits::Limits::DEFAULT.max_digits)]
     max_digits: u64,
     /// Wall-clock budget, in seconds, per claim (`check`) or per command (`simplify`, `equiv`);
     /// 0: no budget.
@@ -188,18 +188,24 @@ fn main() -> ExitCode {
             return ExitCode::from(code);
         }
     };
-    rigor::normal::poly::set_max_terms(cli.max_terms);
-    rigor::normal::poly::set_max_bits(cli.max_digits.saturating_mul(10) / 3);
+    // The size limits of this thread, for the whole command: `simplify`, `equiv` and the
+    // worked solutions' steps compute here, and the commands that check files pass them
+    // on in their `Options` (`limits::current()`) to the checking threads.
+    let _limits = rigor::normal::limits::install(rigor::normal::limits::Limits {
+        max_terms: cli.max_terms,
+        max_digits: cli.max_digits,
+    });
     let opts = rigor::syntax::ParseOptions {
         max_depth: cli.max_depth,
     };
     let timeout = seconds(cli.timeout, 10.0);
-    if !matches!(cli.command, Command::Check { .. }) {
-        rigor::normal::poly::set_deadline(rigor::clock::Deadline::after(
-            timeout,
-            rigor::clock::system(),
-        ));
-    }
+    // The work outside `check_source` (`simplify`, `equiv`, the worked solutions' steps)
+    // has one budget; `check_source` times each claim with the `Options` it is given.
+    let _deadline = rigor::normal::limits::until(if matches!(cli.command, Command::Check { .. }) {
+        None
+    } else {
+        rigor::clock::Deadline::after(timeout, rigor::clock::system())
+    });
     let code = match cli.command {
         Command::Simplify {
             expr,

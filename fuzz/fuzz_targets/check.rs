@@ -9,8 +9,11 @@ fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else {
         return;
     };
-    rigor::normal::poly::set_max_terms(2_000);
     let opts = Options {
+        limits: rigor::normal::limits::Limits {
+            max_terms: 2_000,
+            ..rigor::normal::limits::Limits::DEFAULT
+        },
         timeout: Duration::from_millis(200),
         ..Options::default()
     };

@@ -12,11 +12,14 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     // Whatever parses is lowered too, within a small budget: no input may panic.
-    rigor::normal::poly::set_max_terms(2_000);
-    rigor::normal::poly::set_deadline(rigor::clock::Deadline::after(
+    use rigor::normal::limits;
+    let _limits = limits::install(limits::Limits {
+        max_terms: 2_000,
+        ..limits::Limits::DEFAULT
+    });
+    let _deadline = limits::until(rigor::clock::Deadline::after(
         std::time::Duration::from_millis(200),
         rigor::clock::system(),
     ));
     let _ = rigor::lower::lower(&e, &rigor::lower::Env::default());
-    rigor::normal::poly::set_deadline(None);
 });

@@ -187,7 +187,7 @@ fn integrate_special(
             }
             items = next;
             if items.len() > 4096 {
-                return Err(IntError::Norm(crate::normal::Limit::Terms.into()));
+                return Err(IntError::Norm(crate::normal::Limit::terms().into()));
             }
         }
     }

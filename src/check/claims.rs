@@ -58,10 +58,9 @@ impl Checker<'_, '_> {
             budget = budget.min(file.remaining());
         }
         let deadline = Deadline::after(budget, self.loader.opts.clock);
-        crate::normal::poly::set_deadline(deadline);
+        let _deadline = crate::normal::limits::until(deadline);
         self.timed_out = false;
         self.claim_inner(label, chain, where_, claim, deadline);
-        crate::normal::poly::set_deadline(None);
     }
 
     fn claim_inner(

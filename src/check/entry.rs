@@ -11,6 +11,7 @@ use crate::lower::Condition;
 use crate::normal::Rat;
 use crate::syntax::{parse_file, ParseOptions};
 use std::collections::HashMap;
+use std::fmt;
 use std::time::Duration;
 
 /// Settings of a check run.
@@ -18,6 +19,9 @@ use std::time::Duration;
 pub struct Options {
     /// Parser limits.
     pub parse: ParseOptions,
+    /// The engine's size limits (terms, digits), installed on the checking thread for
+    /// the whole check.
+    pub limits: crate::normal::limits::Limits,
     /// Wall-clock budget per claim (only where there is a clock).
     pub timeout: Duration,
     /// Wall-clock budget for all the claims of one file (`rigor mark` gives each
@@ -38,6 +42,7 @@ impl Default for Options {
     fn default() -> Options {
         Options {
             parse: ParseOptions::default(),
+            limits: crate::normal::limits::Limits::DEFAULT,
             timeout: Duration::from_secs(10),
             file_budget: None,
             max_file_size: 10_000_000,
@@ -59,12 +64,91 @@ pub struct Source {
     pub text: String,
 }
 
+/// Why the file a `use` names cannot be had (after typst's `FileError`). Each holds the
+/// path as written in the `use`; [`Display`](fmt::Display) is the message shown at it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ImportError {
+    /// An absolute path: `use` takes paths relative to the importing file.
+    Absolute {
+        /// The path as written.
+        path: String,
+    },
+    /// A path that leaves the folder being checked.
+    OutsideRoot {
+        /// The path as written.
+        path: String,
+    },
+    /// No file at the path.
+    NotFound {
+        /// The path as written.
+        path: String,
+        /// What the system said, if a file system was asked.
+        reason: Option<String>,
+    },
+    /// A file larger than the largest file read ([`Options::max_file_size`]).
+    TooLarge {
+        /// The path as written.
+        path: String,
+        /// Its size, in bytes.
+        size: u64,
+        /// The limit, in bytes.
+        max: u64,
+    },
+    /// A file that is not UTF-8 text.
+    NotUtf8 {
+        /// The path as written.
+        path: String,
+        /// The offset of the first invalid byte.
+        offset: usize,
+    },
+    /// A file that exists but cannot be read (permissions, a folder, …).
+    Unreadable {
+        /// The path as written.
+        path: String,
+        /// What the system said.
+        reason: String,
+    },
+}
+
+impl fmt::Display for ImportError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ImportError::Absolute { path } => write!(
+                f,
+                "`use` takes a path relative to the importing file, not the absolute path \"{path}\""
+            ),
+            ImportError::OutsideRoot { path } => write!(
+                f,
+                "\"{path}\" is outside the folder being checked; imports must stay inside it"
+            ),
+            ImportError::NotFound { path, reason } => write!(
+                f,
+                "cannot read \"{path}\": {}",
+                reason.as_deref().unwrap_or("no such file")
+            ),
+            ImportError::TooLarge { path, size, max } => write!(
+                f,
+                "cannot read \"{path}\": the file is {size} bytes, more than the limit of {max} (see --max-file-size)"
+            ),
+            ImportError::NotUtf8 { path, offset } => write!(
+                f,
+                "cannot read \"{path}\": the file is not valid UTF-8 (invalid byte at offset {offset})"
+            ),
+            ImportError::Unreadable { path, reason } => {
+                write!(f, "cannot read \"{path}\": {reason}")
+            }
+        }
+    }
+}
+
+impl std::error::Error for ImportError {}
+
 /// Where imports come from: the world, passed in.
 pub trait Resolver {
     /// The file that `path`, written in a `use` of the file `importer` (an [`Source::id`],
-    /// or the name given to [`check_source`]), refers to; the error is the message shown
-    /// at the path.
-    fn resolve(&self, importer: &str, path: &str) -> Result<Source, String>;
+    /// or the name given to [`check_source`]), refers to, or why there is none (shown at
+    /// the path).
+    fn resolve(&self, importer: &str, path: &str) -> Result<Source, ImportError>;
 
     /// The id of the top-level file called `name` (for cycle detection).
     fn identify(&self, name: &str) -> String {
@@ -112,11 +196,9 @@ pub(crate) fn normalise(path: &str) -> Option<String> {
 }
 
 impl Resolver for MemoryResolver {
-    fn resolve(&self, importer: &str, path: &str) -> Result<Source, String> {
+    fn resolve(&self, importer: &str, path: &str) -> Result<Source, ImportError> {
         if path.starts_with('/') {
-            return Err(format!(
-                "`use` takes a path relative to the importing file, not the absolute path \"{path}\""
-            ));
+            return Err(ImportError::Absolute { path: path.into() });
         }
         let dir = importer.rsplit_once('/').map_or("", |(d, _)| d);
         let joined = if dir.is_empty() {
@@ -124,13 +206,12 @@ impl Resolver for MemoryResolver {
         } else {
             format!("{dir}/{path}")
         };
-        let id = normalise(&joined).ok_or_else(|| {
-            format!("\"{path}\" is outside the folder being checked; imports must stay inside it")
+        let id =
+            normalise(&joined).ok_or_else(|| ImportError::OutsideRoot { path: path.into() })?;
+        let text = self.files.get(&id).ok_or_else(|| ImportError::NotFound {
+            path: path.into(),
+            reason: None,
         })?;
-        let text = self
-            .files
-            .get(&id)
-            .ok_or_else(|| format!("cannot read \"{path}\": no such file"))?;
         Ok(Source {
             display: id.rsplit('/').next().unwrap_or(&id).to_string(),
             id,
@@ -176,7 +257,10 @@ pub struct Loader<'o> {
 impl Loader<'_> {
     /// The exports of `path`, written in the file `importer`, checking it if needed.
     pub fn import(&mut self, importer: &str, path: &str) -> Result<Exports, String> {
-        let src = self.resolver.resolve(importer, path)?;
+        let src = self
+            .resolver
+            .resolve(importer, path)
+            .map_err(|e| e.to_string())?;
         if let Some(i) = self.stack.iter().position(|(id, _)| *id == src.id) {
             let chain: Vec<&str> = self.stack[i..]
                 .iter()
@@ -230,6 +314,11 @@ pub fn check_source(
     options: &Options,
     resolver: &dyn Resolver,
 ) -> FileReport {
+    // This thread's limits are the options' until the check returns (or unwinds); its
+    // time budgets are the options' too (each claim installs its own deadline), not a
+    // deadline the caller may have set.
+    let _limits = crate::normal::limits::install(options.limits);
+    let _deadline = crate::normal::limits::until(None);
     let display = name.rsplit(['/', '\\']).next().unwrap_or(name).to_string();
     let mut loader = Loader {
         resolver,

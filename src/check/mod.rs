@@ -5,7 +5,7 @@
 //!
 //! | file | owns |
 //! |---|---|
-//! | `entry.rs` | [`check_source`], [`Options`], [`Resolver`], imports' cycles and cache |
+//! | `entry.rs` | [`check_source`], [`Options`] (with the engine's limits), [`Resolver`] and [`ImportError`], imports' cycles and cache |
 //! | `walk.rs` | the walk over a file: statements, scope, bodies, givens, constraints |
 //! | `claims.rs` | claims: `where`, each link in turn, the facts a claim adds |
 //! | `imports.rs` | `use … with …`: imported claims instantiated, with their conditions |
@@ -40,6 +40,6 @@ mod walk;
 mod zeros;
 
 pub(crate) use entry::normalise;
-pub use entry::{check_source, Exports, MemoryResolver, Options, Resolver, Source};
+pub use entry::{check_source, Exports, ImportError, MemoryResolver, Options, Resolver, Source};
 pub use report::{cite, ClaimReport, FileReport, Justification, LinkReport, Status};
 pub use signs::interval;

@@ -227,7 +227,7 @@ impl<'l, 'o> Checker<'l, 'o> {
     }
 
     fn lower_error(&mut self, e: LowerError) {
-        if e.timeout {
+        if e.timed_out() {
             // Undecided, not bad input: the claim fails, the file is not malformed.
             self.timed_out = true;
             // Said as what it is (undecided), like the summary and the exit status.
@@ -239,8 +239,12 @@ impl<'l, 'o> Checker<'l, 'o> {
             ));
             return;
         }
-        let code = if e.limit { "E0901" } else { "E0101" };
-        self.error(code, e.message, e.span, "");
+        let code = if e.limit().is_some() {
+            "E0901"
+        } else {
+            "E0101"
+        };
+        self.error(code, e.to_string(), e.span, "");
     }
 
     fn declare(&mut self, name: &str, span: Span, d: Decl) -> bool {

@@ -47,9 +47,43 @@ fn report_syntax(e: &SyntaxError, what: &str, src: &str) {
 }
 
 fn report_lower(e: &LowerError, what: &str, src: &str) {
-    let code = if e.limit { "E0901" } else { "E0101" };
-    let d = Diagnostic::error(code, e.message.clone(), e.span, "");
+    let code = if e.limit().is_some() {
+        "E0901"
+    } else {
+        "E0101"
+    };
+    let message = format!("{e}{}", e.limit().map_or("", flag_of));
+    let d = Diagnostic::error(code, message, e.span, "");
     err!("{}", diag::render(&d, what, src));
+}
+
+/// Adds the flag that sets it to each message that is exactly the library's refusal at
+/// one of this thread's size limits (the library says the limit, not the flag).
+fn name_the_flags(reports: &mut [FileReport]) {
+    use rigor::normal::{limits, Limit, NormError};
+    let now = limits::current();
+    let refusals = [Limit::Terms(now.max_terms), Limit::Digits(now.max_digits)]
+        .map(|l| (NormError::Limit(l).to_string(), flag_of(l)));
+    for d in reports.iter_mut().flat_map(|r| r.diagnostics.iter_mut()) {
+        if let Some((_, flag)) = refusals
+            .iter()
+            .find(|(m, _)| d.code == "E0901" && d.message == *m)
+        {
+            d.message.push_str(flag);
+        }
+    }
+}
+
+/// The flag that sets a limit, as the command line says it after the library's message
+/// (which says the limit but not how to change it).
+pub fn flag_of(l: rigor::normal::Limit) -> &'static str {
+    use rigor::normal::Limit;
+    match l {
+        Limit::Terms(_) => " (see --max-terms)",
+        Limit::Digits(_) => " (see --max-digits)",
+        Limit::Time => " (see --timeout)",
+        Limit::Exponent | Limit::RootIndex => "",
+    }
 }
 
 /// The environment of `--assume` and `--body` options: the exact engine's, and the
@@ -213,7 +247,7 @@ fn lower_arg(text: &str, what: &str, env: &Env, opts: &ParseOptions) -> Result<L
     let mut lw = Lowerer::new(env);
     let r = lw.lower(&e).map_err(|e| {
         report_lower(&e, what, text);
-        if e.timeout {
+        if e.timed_out() {
             TIMED_OUT.store(true, std::sync::atomic::Ordering::Relaxed);
         }
     })?;
@@ -409,13 +443,16 @@ pub fn check(
     };
     let options = rigor::check::Options {
         parse: *opts,
+        // The limits `main` installed on this thread, for the checking threads too.
+        limits: rigor::normal::limits::current(),
         timeout,
         max_file_size,
         file_budget: None,
         clock: rigor::clock::system(),
         corrupt_for_tests: false,
     };
-    let reports = rigor::files::check_paths(paths, &options);
+    let mut reports = rigor::files::check_paths(paths, &options);
+    name_the_flags(&mut reports);
     match format {
         Format::Human => {
             for r in &reports {
@@ -461,6 +498,8 @@ pub fn document(
 ) -> u8 {
     let options = rigor::check::Options {
         parse: *opts,
+        // The limits `main` installed on this thread, for the checking threads too.
+        limits: rigor::normal::limits::current(),
         ..rigor::check::Options::default()
     };
     let mut reports = rigor::files::check_paths(&[file.to_path_buf()], &options);
@@ -576,6 +615,8 @@ pub fn lint(
     use rigor::lint::{DocKind, Verdict};
     let options = rigor::check::Options {
         parse: *opts,
+        // The limits `main` installed on this thread, for the checking threads too.
+        limits: rigor::normal::limits::current(),
         timeout,
         ..rigor::check::Options::default()
     };
@@ -631,6 +672,8 @@ pub fn mark(
     use rigor::files::FsResolver;
     let options = rigor::check::Options {
         parse: *opts,
+        // The limits `main` installed on this thread, for the checking threads too.
+        limits: rigor::normal::limits::current(),
         timeout,
         ..rigor::check::Options::default()
     };

@@ -706,7 +706,7 @@ pub fn int_pow(base: &Rat, k: i64) -> Result<Rat, NormError> {
         return kept;
     }
     match base.powi(k) {
-        Err(NormError::Limit(Limit::Terms)) if k > 0 => Ok(Rat::atom(atom::intern(Atom::Pow(
+        Err(NormError::Limit(Limit::Terms(_))) if k > 0 => Ok(Rat::atom(atom::intern(Atom::Pow(
             base.clone(),
             Rat::int(k),
         )))),

@@ -87,7 +87,7 @@ fn divide<K: Ord>(
         }
         q_terms.push((m, c));
         if q_terms.len() > super::poly::max_terms() {
-            return Err(Limit::Terms);
+            return Err(Limit::terms());
         }
         if q_terms.len() % 256 == 0 {
             super::poly::check_deadline()?;
@@ -465,7 +465,7 @@ fn prem(a: &Poly, b: &Poly, v: AtomId) -> Result<Poly, Limit> {
         super::poly::check_deadline()?;
         guard += 1;
         if guard > dr.saturating_add(2) * 4 + 64 {
-            return Err(Limit::Terms);
+            return Err(Limit::terms());
         }
     }
     Ok(r)
@@ -479,7 +479,7 @@ fn prem(a: &Poly, b: &Poly, v: AtomId) -> Result<Poly, Limit> {
 /// step peels the parts off one multiplicity at a time.
 pub fn squarefree(p: &Poly) -> Result<Vec<(Poly, u32)>, Limit> {
     let exact =
-        |a: &Poly, b: &Poly| -> Result<Poly, Limit> { div_exact(a, b)?.ok_or(Limit::Terms) };
+        |a: &Poly, b: &Poly| -> Result<Poly, Limit> { div_exact(a, b)?.ok_or(Limit::terms()) };
     let mut g = p.clone();
     for a in p.atoms() {
         if g.as_constant().is_some() {

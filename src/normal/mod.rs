@@ -6,6 +6,7 @@
 pub mod atom;
 pub mod func;
 pub mod gcd;
+pub mod limits;
 pub mod merge;
 pub mod mono;
 pub mod pack;
@@ -61,39 +62,40 @@ pub fn settle(d: &Rat, s: &Assumptions) -> Rat {
     d
 }
 
-/// A resource limit that an operation would exceed.
+/// A resource limit that an operation would exceed. The size limits carry the limit in
+/// force (this thread's [`limits::Limits`] when the operation failed), and the messages
+/// say the limit, never how to change it (only the command line knows its flags).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Limit {
-    /// An intermediate result would have too many terms.
-    Terms,
+    /// An intermediate result would have more than this many terms.
+    Terms(usize),
     /// An exponent would not fit.
     Exponent,
     /// A fractional power whose root index is above 64 (`x^(1/65)`).
     RootIndex,
-    /// A number would have more digits than rigor computes with.
-    Digits,
+    /// A number would have more than this many decimal digits.
+    Digits(u64),
     /// The time budget of the current claim ran out.
     Time,
+}
+
+impl Limit {
+    /// [`Limit::Terms`] with this thread's limit.
+    pub fn terms() -> Limit {
+        Limit::Terms(limits::max_terms())
+    }
 }
 
 impl fmt::Display for Limit {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Limit::Terms => write!(
-                f,
-                "the result would have more than {} terms (the limit; see --max-terms)",
-                poly::max_terms()
-            ),
+            Limit::Terms(n) => write!(f, "the result would have more than the limit of {n} terms"),
             Limit::Exponent => write!(f, "an exponent exceeds {}", mono::MAX_EXPONENT),
             Limit::RootIndex => {
                 f.write_str("a root index above 64 (rigor takes roots up to the 64th)")
             }
-            Limit::Digits => write!(
-                f,
-                "a number would have more than {} digits (see --max-digits)",
-                poly::max_bits() * 3 / 10
-            ),
-            Limit::Time => f.write_str("the time budget ran out (see --timeout)"),
+            Limit::Digits(n) => write!(f, "a number would have more than the limit of {n} digits"),
+            Limit::Time => f.write_str("the time budget ran out"),
         }
     }
 }

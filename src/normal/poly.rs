@@ -12,51 +12,7 @@ use std::collections::HashMap;
 /// An exact rational number.
 pub type Q = BigRational;
 
-/// Largest number of terms any intermediate polynomial may have (overridable with [`set_max_terms`]).
-static MAX_TERMS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(2_000_000);
-
-/// Default largest size, in bits, of a number produced by a power (about 120,000 digits).
-pub const MAX_BITS: u64 = 400_000;
-
-static MAX_BITS_NOW: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(MAX_BITS);
-
-/// Sets the largest size, in bits, of a number produced by a power.
-pub fn set_max_bits(bits: u64) {
-    MAX_BITS_NOW.store(bits, std::sync::atomic::Ordering::Relaxed);
-}
-
-/// The current limit on the size of a number, in bits.
-pub fn max_bits() -> u64 {
-    MAX_BITS_NOW.load(std::sync::atomic::Ordering::Relaxed)
-}
-
-thread_local! {
-    static DEADLINE: std::cell::Cell<Option<crate::clock::Deadline>> = const { std::cell::Cell::new(None) };
-}
-
-/// Sets (or clears) the wall-clock deadline of the work on this thread; long operations
-/// check it and fail with [`Limit::Time`].
-pub fn set_deadline(d: Option<crate::clock::Deadline>) {
-    DEADLINE.with(|c| c.set(d));
-}
-
-/// Fails with [`Limit::Time`] once this thread's deadline has passed.
-pub fn check_deadline() -> Result<(), Limit> {
-    match DEADLINE.with(|c| c.get()) {
-        Some(d) if d.passed() => Err(Limit::Time),
-        _ => Ok(()),
-    }
-}
-
-/// Sets the largest number of terms an intermediate polynomial may have.
-pub fn set_max_terms(n: usize) {
-    MAX_TERMS.store(n, std::sync::atomic::Ordering::Relaxed);
-}
-
-/// The current limit on the number of terms.
-pub fn max_terms() -> usize {
-    MAX_TERMS.load(std::sync::atomic::Ordering::Relaxed)
-}
+pub use super::limits::{check_deadline, max_bits, max_terms};
 
 /// A polynomial: terms sorted ascending by monomial order, each coefficient nonzero.
 /// The fields are private so that every value is canonical and `==` is equality.
@@ -359,7 +315,7 @@ impl Poly {
             }
             let out = parts.pop().unwrap_or_else(Poly::zero);
             if out.len() > max_terms() {
-                return Err(Limit::Terms);
+                return Err(Limit::terms());
             }
             return Ok(out);
         }
@@ -376,7 +332,7 @@ impl Poly {
                     *acc.entry(m).or_insert(0) += c1 * c2;
                 }
                 if acc.len() > max_terms() {
-                    return Err(Limit::Terms);
+                    return Err(Limit::terms());
                 }
                 check_deadline()?;
             }
@@ -401,7 +357,7 @@ impl Poly {
                     }
                 }
                 if acc.len() > max_terms() {
-                    return Err(Limit::Terms);
+                    return Err(Limit::terms());
                 }
                 check_deadline()?;
             }
@@ -429,7 +385,7 @@ impl Poly {
             return Ok(Poly::zero());
         }
         if !pow_fits(self.len(), k) {
-            return Err(Limit::Terms);
+            return Err(Limit::terms());
         }
         if iterate_is_cheaper(self.len(), k) {
             // A short sum: multiplying by it k − 1 times touches far fewer terms than
@@ -645,7 +601,7 @@ fn mul_packed(
             *acc.entry(x + y).or_insert(0) += c1 * c2;
         }
         if acc.len() > max_terms() {
-            return Err(Limit::Terms);
+            return Err(Limit::terms());
         }
         check_deadline()?;
     }
@@ -724,7 +680,7 @@ pub fn pow_q_checked(q: &Q, k: u32) -> Result<Q, Limit> {
     }
     let bits = q.numer().bits().max(q.denom().bits());
     if bits > 1 && bits.saturating_sub(1).saturating_mul(u64::from(k)) > max_bits() {
-        return Err(Limit::Digits);
+        return Err(Limit::Digits(super::limits::current().max_digits));
     }
     Ok(pow_q(q, k))
 }

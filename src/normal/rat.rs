@@ -13,7 +13,7 @@ use num_traits::{One, Zero};
 
 /// `a / b` for a divisor known to divide exactly.
 fn exact(a: &Poly, b: &Poly) -> Result<Poly, NormError> {
-    div_exact(a, b)?.ok_or(NormError::Limit(Limit::Terms))
+    div_exact(a, b)?.ok_or(NormError::Limit(Limit::terms()))
 }
 
 /// A normal form: a reduced rational function over ℚ in atoms.
@@ -347,7 +347,7 @@ impl Rat {
         }
         // Powers of sums: square and multiply, reducing as we go.
         if !super::poly::pow_fits(base.num.len().max(base.den.len()), e) {
-            return Err(Limit::Terms.into());
+            return Err(Limit::terms().into());
         }
         let mut result = Rat::one();
         let mut b = base;

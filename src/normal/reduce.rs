@@ -33,7 +33,7 @@ pub fn reduce(p: &Poly) -> Result<Poly, NormError> {
             Some(next) => cur = next,
         }
     }
-    Err(NormError::Limit(Limit::Terms))
+    Err(NormError::Limit(Limit::terms()))
 }
 
 /// One pass; `None` when nothing applied.
@@ -82,7 +82,7 @@ fn reduce_once(p: &Poly) -> Result<Option<Poly>, NormError> {
         for &(a, e) in m.pairs() {
             match rule_of(a) {
                 Rule::Power(n) if e >= n => {
-                    let v = power_value(a).ok_or(NormError::Limit(Limit::Terms))?;
+                    let v = power_value(a).ok_or(NormError::Limit(Limit::terms()))?;
                     factor = factor.mul(&v.pow(u64::from(e / n))?)?;
                     if e % n > 0 {
                         rest.push((a, e % n));

@@ -186,7 +186,7 @@ impl<'a> Subst<'a> {
             if acc.len() > super::poly::max_terms().saturating_mul(4) {
                 acc = Poly::from_terms(acc).terms().to_vec();
                 if acc.len() > super::poly::max_terms() {
-                    return Err(super::Limit::Terms.into());
+                    return Err(super::Limit::terms().into());
                 }
             }
         }

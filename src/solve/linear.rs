@@ -61,13 +61,13 @@ pub fn solve(a: &[Vec<Rat>], b: &[Rat]) -> Result<Vec<Rat>, LinearError> {
         for e in row.iter().chain(std::iter::once(rhs)) {
             if !e.den().is_one() {
                 let g = gcd(&den, e.den())?;
-                let q = div_exact(e.den(), &g)?.ok_or(Limit::Terms)?;
+                let q = div_exact(e.den(), &g)?.ok_or(Limit::terms())?;
                 den = den.mul(&q)?;
             }
         }
         let mut out = Vec::with_capacity(n + 1);
         for e in row.iter().chain(std::iter::once(rhs)) {
-            let q = div_exact(&den, e.den())?.ok_or(Limit::Terms)?;
+            let q = div_exact(&den, e.den())?.ok_or(Limit::terms())?;
             out.push(e.num().mul(&q)?);
         }
         m.push(out);
@@ -169,7 +169,7 @@ fn bareiss_entry(a: &Poly, b: &Poly, c: &Poly, d: &Poly, prev: &Poly) -> Result<
     } else {
         a.mul(b)?.sub_owned(c.mul(d)?)
     };
-    Ok(div_exact(&t, prev)?.ok_or(Limit::Terms)?)
+    Ok(div_exact(&t, prev)?.ok_or(Limit::terms())?)
 }
 
 /// The determinant by Bareiss elimination, negated when `negate` (the sign of the row

@@ -4,20 +4,41 @@ use super::ast::Span;
 use nom::error::{ErrorKind, ParseError};
 use std::fmt;
 
-/// A syntax error: what was expected, and where.
+/// A syntax error: what kind, what was expected, and where.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SyntaxError {
     /// The bytes the error is about (empty at the end of the input).
     pub span: Span,
+    /// What kind of error it is (the message says it in words).
+    pub kind: SyntaxErrorKind,
     /// A message that makes sense on its own, e.g. "expected an expression after `+`".
     pub message: String,
 }
 
+/// The kinds of syntax errors: the parser's limits, and every other error.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SyntaxErrorKind {
+    /// Parentheses, calls, unary minus or powers nested deeper than
+    /// [`ParseOptions::max_depth`].
+    NestingLimit,
+    /// An expression with more operations inside one another than the parser builds
+    /// (however it is nested: `a + b + … + z` a thousand times over).
+    TooLarge,
+    /// Any other error: the message says what was expected, or what was unexpected.
+    Other,
+}
+
 impl SyntaxError {
-    /// An error at `span`.
+    /// An error at `span` ([`SyntaxErrorKind::Other`]).
     pub fn new(span: Span, message: impl Into<String>) -> SyntaxError {
+        SyntaxError::of_kind(span, SyntaxErrorKind::Other, message)
+    }
+
+    /// An error of the kind `kind` at `span`.
+    pub fn of_kind(span: Span, kind: SyntaxErrorKind, message: impl Into<String>) -> SyntaxError {
         SyntaxError {
             span,
+            kind,
             message: message.into(),
         }
     }
@@ -59,6 +80,8 @@ pub(crate) struct PError<'a> {
     pub len: usize,
     /// The message, if a rule has said what it expected.
     pub message: Option<String>,
+    /// The kind of error the message describes.
+    pub kind: SyntaxErrorKind,
 }
 
 impl<'a> ParseError<&'a str> for PError<'a> {
@@ -67,6 +90,7 @@ impl<'a> ParseError<&'a str> for PError<'a> {
             at: input,
             len: 0,
             message: None,
+            kind: SyntaxErrorKind::Other,
         }
     }
 
@@ -97,10 +121,21 @@ pub(crate) fn failure<'a, T>(
     len: usize,
     message: impl Into<String>,
 ) -> PResult<'a, T> {
+    failure_of_kind(at, len, SyntaxErrorKind::Other, message)
+}
+
+/// A committed failure of the kind `kind` at `at`, `len` bytes long, saying `message`.
+pub(crate) fn failure_of_kind<'a, T>(
+    at: &'a str,
+    len: usize,
+    kind: SyntaxErrorKind,
+    message: impl Into<String>,
+) -> PResult<'a, T> {
     Err(nom::Err::Failure(PError {
         at,
         len,
         message: Some(message.into()),
+        kind,
     }))
 }
 
@@ -110,5 +145,6 @@ pub(crate) fn no_match<'a, T>(at: &'a str) -> PResult<'a, T> {
         at,
         len: 0,
         message: None,
+        kind: SyntaxErrorKind::Other,
     }))
 }

@@ -89,7 +89,12 @@ fn too_large<'a>(cx: &Cx<'a>, at: &'a str) -> Fail<'a> {
         "expression too large: more than {} operations inside one another; split it with `let`",
         cx.max_height
     );
-    fail(at, token_len(at).max(1), message)
+    nom::Err::Failure(PError {
+        at,
+        len: token_len(at).max(1),
+        message: Some(message),
+        kind: super::error::SyntaxErrorKind::TooLarge,
+    })
 }
 
 /// "expected an expression after `…`" at `at`. Errors are built out of line, keeping the
@@ -121,6 +126,7 @@ pub(crate) fn fail(at: &str, len: usize, message: String) -> Fail<'_> {
         at,
         len,
         message: Some(message),
+        kind: super::error::SyntaxErrorKind::Other,
     })
 }
 

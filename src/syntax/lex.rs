@@ -1,7 +1,9 @@
 //! Tokens of the expression language: whitespace and comments, numbers, names, punctuation, and byte offsets.
 
 use super::ast::Span;
-use super::error::{failure, no_match, Fail, PResult, ParseOptions, SyntaxError};
+use super::error::{
+    failure, failure_of_kind, no_match, Fail, PResult, ParseOptions, SyntaxError, SyntaxErrorKind,
+};
 use nom::bytes::complete::take_while;
 use nom::character::complete::{char, digit0, digit1, one_of, satisfy};
 use nom::combinator::{opt, recognize};
@@ -83,7 +85,7 @@ impl<'a> Cx<'a> {
                 let message = e
                     .message
                     .unwrap_or_else(|| format!("unexpected {}", describe(self, e.at)));
-                SyntaxError::new(span, message)
+                SyntaxError::of_kind(span, e.kind, message)
             }
             nom::Err::Incomplete(_) => SyntaxError::new(
                 Span::new(self.base.len(), self.base.len()),
@@ -97,7 +99,12 @@ impl<'a> Cx<'a> {
         let deeper = depth.saturating_add(1);
         if deeper > self.max_depth {
             let message = format!("expression nested deeper than {} levels", self.max_depth);
-            return failure(at, token_len(at).max(1), message);
+            return failure_of_kind(
+                at,
+                token_len(at).max(1),
+                SyntaxErrorKind::NestingLimit,
+                message,
+            );
         }
         Ok((at, deeper))
     }

@@ -15,6 +15,6 @@ mod stmt;
 #[cfg(test)]
 mod tests;
 
-pub use error::{ParseOptions, SyntaxError};
+pub use error::{ParseOptions, SyntaxError, SyntaxErrorKind};
 pub use expr::{parse_chain, parse_expr};
 pub use file::parse_file;

@@ -3,7 +3,7 @@
 
 use super::ast::{BodyDef, Chain, Label, Name, Range, SignDecl, Stmt, StmtKind, UnitDecl};
 use super::chain::{assignments, by_clause, chain_or_expr, label, label_list, name, ChainRules};
-use super::error::{failure, PResult, SyntaxError};
+use super::error::{failure, failure_of_kind, PResult, SyntaxError};
 use super::expr::expr;
 use super::lex::{end, expected, hspace, ident, keyword, number, punct, token_len, ws, Cx};
 use num_traits::Zero;
@@ -420,7 +420,12 @@ fn latex_chain<'a>(cx: &Cx<'a>, i: &'a str) -> Option<PResult<'a, Chain>> {
             Err(e) => {
                 let off = e.span.start.saturating_sub(cx.pos(inside));
                 let at = inside.get(off..).unwrap_or(inside);
-                failure(at, e.span.end.saturating_sub(e.span.start), e.message)
+                failure_of_kind(
+                    at,
+                    e.span.end.saturating_sub(e.span.start),
+                    e.kind,
+                    e.message,
+                )
             }
         },
     )

@@ -18,7 +18,7 @@ fn add_body(env: &mut Env, def: &str) -> Result<(), String> {
     for item in file.items {
         if let Item::Stmt(s) = item {
             if let StmtKind::Body { name, def } = s.kind {
-                let b = build_body(&name.name, &def, env).map_err(|e| e.message)?;
+                let b = build_body(&name.name, &def, env).map_err(|e| e.to_string())?;
                 env.bodies.insert(name.name, b);
             }
         }

@@ -797,12 +797,11 @@ fn check_and_validate(g: &GenFile, pt: &[f64]) -> Result<(), TestCaseError> {
 /// Parses an expression and, if it parses, lowers it: nothing may panic.
 fn expr_survives(s: &str) {
     if let Ok(e) = parse_expr(s, &ParseOptions::default()) {
-        rigor::normal::poly::set_deadline(rigor::clock::Deadline::after(
+        let _deadline = rigor::normal::limits::until(rigor::clock::Deadline::after(
             Duration::from_millis(500),
             rigor::clock::system(),
         ));
         let _ = lower(&e, &Env::default());
-        rigor::normal::poly::set_deadline(None);
     }
 }
 

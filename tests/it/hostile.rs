@@ -339,3 +339,37 @@ fn the_whole_corpus_as_one_folder() {
     );
     assert!(r.stdout.contains("files: 21,"), "{}", r.stdout);
 }
+
+#[test]
+fn the_term_limit_flag_reaches_simplify_equiv_and_the_checking_threads() {
+    let product = "(a + b + c + d + e + f) (p + q + r + s + u + v)";
+    expect(&["simplify", product], 0, "a p", GUARD);
+    expect(
+        &["simplify", "--max-terms", "20", product],
+        2,
+        "refused: the result would have more than the limit of 20 terms (see --max-terms)",
+        GUARD,
+    );
+    expect(
+        &["equiv", "--max-terms", "20", product, product],
+        2,
+        "more than the limit of 20 terms (see --max-terms)",
+        GUARD,
+    );
+    let dir = scratch("hostile-max-terms");
+    let p = write(
+        &dir,
+        "product.deriv",
+        format!("symbols a b c d e f p q r s u v > 0\nclaim [x] {product} = {product}\n")
+            .as_bytes(),
+    );
+    expect(&["check", &p], 0, "verified", GUARD);
+    // `check` runs its files on threads of their own: the limit goes with the options.
+    expect(
+        &["check", "--max-terms", "20", &p],
+        2,
+        "refused: the result would have more than the limit of 20 terms (see --max-terms)",
+        GUARD,
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -246,3 +246,212 @@ fn a_forgotten_mass_times_squared_distance_is_named_where_inertia_is_concerned()
         "the left side is missing the term m v^2/2 that the right side has"
     );
 }
+
+/// A product of two six-term sums: 36 terms.
+const PRODUCT: &str = "symbols a b c d e f p q r s u v > 0
+claim [x] (a + b + c + d + e + f) (p + q + r + s + u + v) = (a + b + c + d + e + f) (p + q + r + s + u + v)
+";
+
+fn with_terms(max_terms: usize) -> Options {
+    Options {
+        limits: rigor::normal::limits::Limits {
+            max_terms,
+            ..rigor::normal::limits::Limits::DEFAULT
+        },
+        ..crate::no_budget()
+    }
+}
+
+#[test]
+fn the_library_and_the_command_line_have_the_same_limits() {
+    use rigor::normal::limits::{self, Limits};
+    assert_eq!(Options::default().limits, Limits::DEFAULT);
+    // The defaults docs/commands.md gives for --max-terms and --max-digits.
+    assert_eq!(
+        (Limits::DEFAULT.max_terms, Limits::DEFAULT.max_digits),
+        (200_000, 120_000)
+    );
+    // Outside any check, a thread works with the defaults.
+    assert_eq!(limits::current(), Limits::DEFAULT);
+}
+
+#[test]
+fn options_limits_below_the_default_refuse_a_large_expansion_saying_the_limit() {
+    let files = MemoryResolver::new();
+    let r = check_source("p.deriv", PRODUCT, &crate::no_budget(), &files);
+    assert!(r.ok(), "{:?}", r.diagnostics);
+    let r = check_source("p.deriv", PRODUCT, &with_terms(20), &files);
+    assert!(!r.ok());
+    let d = r
+        .diagnostics
+        .iter()
+        .find(|d| d.code == "E0901")
+        .unwrap_or_else(|| panic!("{:?}", r.diagnostics));
+    assert_eq!(
+        d.message,
+        "refused: the result would have more than the limit of 20 terms"
+    );
+    // The check's limits held only while it ran.
+    assert_eq!(
+        rigor::normal::limits::current(),
+        rigor::normal::limits::Limits::DEFAULT
+    );
+}
+
+#[test]
+fn the_limit_in_force_is_carried_in_the_error() {
+    use rigor::lower::{lower, Env, LowerErrorKind};
+    use rigor::normal::limits::{self, Limits};
+    use rigor::normal::Limit;
+    let e = rigor::syntax::parse_expr(
+        "(a + b + c + d + e + f) (p + q + r + s + u + v)",
+        &Default::default(),
+    )
+    .unwrap();
+    assert!(lower(&e, &Env::default()).is_ok());
+    let err = {
+        let _limits = limits::install(Limits {
+            max_terms: 20,
+            ..Limits::DEFAULT
+        });
+        lower(&e, &Env::default()).unwrap_err()
+    };
+    assert_eq!(err.kind, LowerErrorKind::Limit(Limit::Terms(20)));
+    assert!(!err.to_string().contains("--"), "{err}");
+    let e = rigor::syntax::parse_expr("3^100000", &Default::default()).unwrap();
+    let err = {
+        let _limits = limits::install(Limits {
+            max_digits: 1000,
+            ..Limits::DEFAULT
+        });
+        lower(&e, &Env::default()).unwrap_err()
+    };
+    assert_eq!(err.kind, LowerErrorKind::Limit(Limit::Digits(1000)));
+    assert_eq!(
+        err.to_string(),
+        "refused: a number would have more than the limit of 1000 digits"
+    );
+}
+
+#[test]
+fn checks_on_two_threads_with_different_limits_do_not_see_each_others() {
+    let barrier = std::sync::Barrier::new(2);
+    let run = |max_terms: usize| {
+        let files = MemoryResolver::new();
+        let opts = with_terms(max_terms);
+        barrier.wait();
+        (0..20)
+            .map(|_| {
+                let r = check_source("p.deriv", PRODUCT, &opts, &files);
+                (
+                    r.ok(),
+                    r.diagnostics
+                        .iter()
+                        .map(|d| d.message.clone())
+                        .collect::<Vec<_>>(),
+                )
+            })
+            .collect::<Vec<_>>()
+    };
+    let (small, large) = std::thread::scope(|s| {
+        let small = s.spawn(|| run(20));
+        let large = s.spawn(|| run(1000));
+        (small.join().unwrap(), large.join().unwrap())
+    });
+    for (ok, msgs) in small {
+        assert!(!ok);
+        assert!(
+            msgs.iter()
+                .any(|m| m.contains("more than the limit of 20 terms")),
+            "{msgs:?}"
+        );
+    }
+    for (ok, msgs) in large {
+        assert!(ok, "{msgs:?}");
+    }
+}
+
+#[test]
+fn a_resolver_says_why_an_import_cannot_be_had() {
+    use rigor::check::{ImportError, Resolver};
+    use rigor::files::FsResolver;
+    let mut files = MemoryResolver::new();
+    files.insert("lib/rod.deriv", ROD);
+    assert!(files.resolve("main.deriv", "lib/rod.deriv").is_ok());
+    let cases = [
+        (
+            "/etc/rod.deriv",
+            ImportError::Absolute {
+                path: "/etc/rod.deriv".into(),
+            },
+        ),
+        (
+            "../rod.deriv",
+            ImportError::OutsideRoot {
+                path: "../rod.deriv".into(),
+            },
+        ),
+        (
+            "lib/none.deriv",
+            ImportError::NotFound {
+                path: "lib/none.deriv".into(),
+                reason: None,
+            },
+        ),
+    ];
+    for (path, want) in cases {
+        assert_eq!(files.resolve("main.deriv", path), Err(want), "{path}");
+    }
+    // The messages are the ones shown at the path.
+    assert_eq!(
+        files
+            .resolve("main.deriv", "x.deriv")
+            .unwrap_err()
+            .to_string(),
+        "cannot read \"x.deriv\": no such file"
+    );
+    let dir = crate::cli::scratch("import-errors");
+    std::fs::create_dir_all(dir.join("sub")).unwrap();
+    std::fs::write(dir.join("sub/rod.deriv"), ROD).unwrap();
+    std::fs::write(dir.join("sub/latin1.deriv"), b"% caf\xe9\n").unwrap();
+    std::fs::write(dir.join("outside.deriv"), ROD).unwrap();
+    let fs = FsResolver {
+        root: dir.join("sub"),
+        max_file_size: 100,
+    };
+    let main = dir.join("sub/main.deriv").display().to_string();
+    assert!(matches!(
+        fs.resolve(&main, "rod.deriv"),
+        Err(ImportError::TooLarge { size, max: 100, .. }) if size == ROD.len() as u64
+    ));
+    assert!(matches!(
+        fs.resolve(&main, "none.deriv"),
+        Err(ImportError::NotFound {
+            reason: Some(_),
+            ..
+        })
+    ));
+    assert_eq!(
+        fs.resolve(&main, "latin1.deriv"),
+        Err(ImportError::NotUtf8 {
+            path: "latin1.deriv".into(),
+            offset: 5
+        })
+    );
+    assert_eq!(
+        fs.resolve(&main, "../outside.deriv"),
+        Err(ImportError::OutsideRoot {
+            path: "../outside.deriv".into()
+        })
+    );
+    // A folder is there but is not a file.
+    let fs = FsResolver {
+        max_file_size: 10_000_000,
+        ..fs
+    };
+    assert!(matches!(
+        fs.resolve(&main, "."),
+        Err(ImportError::Unreadable { .. })
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -65,7 +65,7 @@ pub fn assume_field(fields: &[String]) -> String {
 /// Parses and lowers `src` in `env`; errors as text.
 pub fn norm_in(src: &str, env: &Env) -> Result<Rat, String> {
     let e = parse_expr(src, &ParseOptions::default()).map_err(|e| format!("syntax: {e}"))?;
-    lower(&e, env).map_err(|e| e.message)
+    lower(&e, env).map_err(|e| e.to_string())
 }
 
 /// Parses and lowers `src` with no assumptions; panics on error.

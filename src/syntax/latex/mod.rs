@@ -207,8 +207,9 @@ impl P {
     fn nest(&mut self) -> Result<(), SyntaxError> {
         self.depth += 1;
         if self.depth > self.max_depth {
-            return Err(SyntaxError::new(
+            return Err(SyntaxError::of_kind(
                 self.span(),
+                crate::syntax::SyntaxErrorKind::NestingLimit,
                 format!("nesting deeper than {} levels", self.max_depth),
             ));
         }

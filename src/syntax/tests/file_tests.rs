@@ -3,7 +3,7 @@
 
 use super::{assert_err, at, chain_sexpr, sexpr};
 use crate::syntax::ast::{Assign, BodyDef, By, Item, Label, Name, ProsePart, SignDecl, StmtKind};
-use crate::syntax::{parse_file, ParseOptions};
+use crate::syntax::{parse_file, ParseOptions, SyntaxErrorKind};
 
 /// `[a],[b]` for labels.
 fn labels(ls: &[Label]) -> String {
@@ -625,9 +625,20 @@ fn statement_errors() {
 fn deep_nesting_in_a_file() {
     let src = format!("claim x = {}", "(".repeat(1_000_000));
     let e = parse_file(&src, &ParseOptions::default()).expect_err("too deep");
-    assert_eq!(e.message, "expression nested deeper than 200 levels");
+    assert_eq!(e.kind, SyntaxErrorKind::NestingLimit);
     assert_eq!((e.span.start, e.span.end), (210, 211));
     let src = format!("> ${}$", "-".repeat(1_000_000));
     let e = parse_file(&src, &ParseOptions::default()).expect_err("too deep");
-    assert_eq!(e.message, "expression nested deeper than 200 levels");
+    assert_eq!(e.kind, SyntaxErrorKind::NestingLimit);
+    // LaTeX between `$$` on a claim line has the same limit.
+    let src = format!("claim [x] $$x = {}$$", "(".repeat(1_000));
+    let e = parse_file(&src, &ParseOptions::default()).expect_err("too deep");
+    assert_eq!(e.kind, SyntaxErrorKind::NestingLimit, "{}", e.message);
+    let src = format!("claim [x] x = {}", vec!["x"; 1_000_000].join(" + "));
+    let e = parse_file(&src, &ParseOptions::default()).expect_err("too large");
+    assert_eq!(e.kind, SyntaxErrorKind::TooLarge, "{}", e.message);
+    for src in ["claim [x] x = ", "frobnicate x", "> $x"] {
+        let e = parse_file(src, &ParseOptions::default()).expect_err(src);
+        assert_eq!(e.kind, SyntaxErrorKind::Other, "{src}: {}", e.message);
+    }
 }
