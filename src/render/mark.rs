@@ -81,7 +81,7 @@ fn cell(s: &str) -> String {
 }
 
 /// The class summary table (Markdown): file names and reasons are untrusted text,
-/// escaped as [`cell`]s.
+/// escaped as table cells (`cell`).
 pub fn summary(rows: &[Row]) -> String {
     let mut out =
         String::from("| file | steps verified | first failure | results |\n|---|---|---|---|\n");
