@@ -7,6 +7,7 @@ use super::report::cite;
 use super::solve::Step;
 use super::solve::{apply_steps, unknown_name, Fact};
 use super::step::{LinkInput, Reduced};
+use crate::diag::Code;
 
 /// The two sides reduced by every fact in scope, and the steps that did it.
 pub(super) type Sides = (Rat, Rat, Vec<Step>);
@@ -39,7 +40,7 @@ impl Checker<'_, '_> {
             super::solve::eliminate_all(&red.diff, facts, &is_unknown, signs, deadline, params).ok()
         };
         let not_verified = |headline: String, notes: Vec<String>| {
-            let mut d = Diagnostic::error("E0302", headline, span, "not verified");
+            let mut d = Diagnostic::error(Code::NotVerified, headline, span, "not verified");
             d.notes = notes;
             d
         };
@@ -156,7 +157,7 @@ impl Checker<'_, '_> {
                 free.then(|| format!(" ({name} = {} from {})", short(&plain(&v)), from.join(", ")))
             });
             let mut d = Diagnostic::error(
-                "E0302",
+                Code::NotVerified,
                 format!(
                     "not verified: the facts determine {name}{}, but `{name}` is declared with `symbols`, as a given quantity",
                     value.unwrap_or_default()
@@ -252,7 +253,7 @@ impl Checker<'_, '_> {
         };
         if red.timed_out() {
             let d = Diagnostic::error(
-                "E0902",
+                Code::TimeBudget,
                 "not verified: the claim ran out of its time budget (see --timeout)",
                 span,
                 "undecided",
@@ -313,7 +314,7 @@ impl Checker<'_, '_> {
                     .or(diagnosis)
                     .unwrap_or_else(|| "the two sides differ".into());
                 let d = Diagnostic::error(
-                    "E0301",
+                    Code::Refuted,
                     format!("this step does not hold{using}"),
                     span,
                     &label,
@@ -334,7 +335,7 @@ impl Checker<'_, '_> {
             }
             Verdict::Undecided { why } => {
                 let d = Diagnostic::error(
-                    "E0302",
+                    Code::NotVerified,
                     format!("not verified{using}: rigor can neither prove nor refute this step"),
                     span,
                     "undecided",
@@ -342,7 +343,7 @@ impl Checker<'_, '_> {
                 with_notes(d, vec![why])
             }
             Verdict::Equal => with_notes(
-                Diagnostic::error("E0302", "not verified", span, ""),
+                Diagnostic::error(Code::NotVerified, "not verified", span, ""),
                 Vec::new(),
             ),
         }
@@ -375,7 +376,7 @@ impl Checker<'_, '_> {
         }
         let root_missing = !powers.is_empty();
         let d = Diagnostic::error(
-            "E0302",
+            Code::NotVerified,
             headline,
             span,
             if root_missing {

@@ -1,5 +1,6 @@
 //! The commands behind `rigor`'s subcommands; each returns the exit status.
 
+use rigor::diag::Code;
 // Output that ignores a closed pipe (`rigor check | head` must not panic).
 macro_rules! out {
     ($($t:tt)*) => {{
@@ -38,7 +39,7 @@ use std::path::Path;
 
 fn report_syntax(e: &SyntaxError, what: &str, src: &str) {
     let d = Diagnostic::error(
-        "E0001",
+        Code::Syntax,
         format!("syntax error: {}", e.message),
         e.span,
         "here",
@@ -47,7 +48,11 @@ fn report_syntax(e: &SyntaxError, what: &str, src: &str) {
 }
 
 fn report_lower(e: &LowerError, what: &str, src: &str) {
-    let code = if e.limit { "E0901" } else { "E0101" };
+    let code = if e.limit {
+        Code::SizeLimit
+    } else {
+        Code::NoValue
+    };
     let d = Diagnostic::error(code, e.message.clone(), e.span, "");
     err!("{}", diag::render(&d, what, src));
 }
@@ -106,7 +111,7 @@ fn options_env(
                     )
                     .map_err(|why| {
                         let d = Diagnostic::error(
-                            "E0203",
+                            Code::DeclaredTwice,
                             why,
                             lo.span.to(hi.span),
                             "the lower bound must be below the upper bound",

@@ -4,6 +4,7 @@
 //! document: its symbols declared as reals (or as the document's `rigor:` comments
 //! say), a chain whose left side is a lone new symbol defining it for later chains.
 
+use crate::diag::Code;
 mod extract;
 mod mass;
 
@@ -717,7 +718,13 @@ fn part_outcome(checked: &FileReport, part: &Part, whole: Span) -> (Vec<Status>,
 /// first link must hold on its own, or state a relation for a lone symbol.
 fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
     let holds = |s: &[Status]| !s.is_empty() && s.iter().all(Status::is_verified);
-    let refuted = ["E0301", "E0303", "E0304", "E0305", "E0401"];
+    let refuted = [
+        Code::Refuted,
+        Code::Inequality,
+        Code::Approximation,
+        Code::DivisionByZero,
+        Code::Units,
+    ];
     let (first_statuses, mut first_diags) = match &p.first {
         Some(part) => part_outcome(checked, part, p.span),
         None => (Vec::new(), Vec::new()),
@@ -757,7 +764,7 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
             }
             for x in d.iter_mut().filter(|x| refuted.contains(&x.code)) {
                 x.message = later_needs(p, x);
-                x.code = "E0302";
+                x.code = Code::NotVerified;
             }
             first_diags.extend(d);
             return report(Verdict::NeedsContext, first_diags);
@@ -780,13 +787,13 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
     // hold by definitions and laws given in prose.
     for d in &mut first_diags {
         if refuted.contains(&d.code) {
-            d.code = "E0302";
+            d.code = Code::NotVerified;
             d.message = "needs context: this relation does not hold for every value of its symbols; the document must define or give it".into();
         }
     }
     if first_diags.is_empty() {
         first_diags.push(Diagnostic::error(
-            "E0302",
+            Code::NotVerified,
             "needs context: this chain uses something the document defines elsewhere",
             p.span,
             "",
@@ -952,7 +959,7 @@ fn read(
     let unread = |span: Span, message: String| ChainReport {
         span,
         verdict: Verdict::NeedsContext,
-        diagnostics: vec![Diagnostic::error("E0001", message, span, "")],
+        diagnostics: vec![Diagnostic::error(Code::Syntax, message, span, "")],
         assuming: Vec::new(),
     };
     let after = e.span.end.saturating_sub(at);

@@ -5,6 +5,7 @@
 //! entry.
 
 use crate::check::{check_source, FileReport, Options, Resolver, Status};
+use crate::diag::Code;
 use crate::diag::{line_col, Diagnostic};
 use crate::syntax::ast::{Chain, Expr, ExprKind, Item, StmtKind};
 
@@ -142,12 +143,12 @@ pub fn kind(d: &Diagnostic) -> &'static str {
         d.primary.as_ref().map_or("", |p| p.1.as_str())
     );
     match d.code {
-        "E0001" | "E0002" => return "syntax",
-        "E0201" => return "undeclared",
-        "E0401" | "E0402" | "E0403" => return "units",
+        Code::Syntax | Code::Unreadable => return "syntax",
+        Code::Undeclared => return "undeclared",
+        Code::Units | Code::BadUnit | Code::NoUnit => return "units",
         // A given that is false, facts that contradict each other: bad input in
         // `check` (E0306), never "could not decide".
-        "E0306" => return "false_fact",
+        Code::FalseFacts => return "false_fact",
         _ => {}
     }
     if m.contains("wrong sign") || m.contains("opposite signs") {
@@ -255,7 +256,7 @@ fn resting_on_false_facts(
     let false_fact = sub
         .diagnostics
         .iter()
-        .filter(|d| d.code == "E0306")
+        .filter(|d| d.code == Code::FalseFacts)
         .min_by_key(|d| d.primary.as_ref().map_or(0, |p| p.0.start))?;
     let chain = submission_chain(e, sub, mapping)?;
     let verified = sub
@@ -382,7 +383,7 @@ fn outcome_at(r: &FileReport, line: usize) -> Outcome {
                 .diagnostics
                 .iter()
                 .filter(inside)
-                .any(|d| d.code == "E0306") =>
+                .any(|d| d.code == Code::FalseFacts) =>
         {
             Outcome::Wrong
         }

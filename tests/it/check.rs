@@ -166,7 +166,7 @@ fn fixtures_with_an_expectation_fail_with_that_code_on_that_line_and_only_there(
                 + 1
         });
         assert_eq!(
-            (first.code, at),
+            (first.code.as_str(), at),
             (code.as_str(), line),
             "{}: first error `{}`",
             path.display(),
@@ -203,7 +203,7 @@ fn mixed_scales_in_one_sum_are_a_warning_not_a_failure() {
         PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/check/pass/units_mixed_scales.deriv");
     let r = check_one(&path);
     assert!(r.ok());
-    let warnings: Vec<&str> = r.diagnostics.iter().map(|d| d.code).collect();
+    let warnings: Vec<&str> = r.diagnostics.iter().map(|d| d.code.as_str()).collect();
     assert_eq!(warnings, ["W0401", "W0401"]);
 }
 
@@ -217,12 +217,12 @@ fn errors_and_notes(name: &str) -> (Vec<&'static str>, usize, FileReport) {
         .diagnostics
         .iter()
         .filter(|d| d.severity == rigor::diag::Severity::Error)
-        .map(|d| d.code)
+        .map(|d| d.code.as_str())
         .collect();
     let notes = r
         .diagnostics
         .iter()
-        .filter(|d| d.code == "N0205" && d.severity == rigor::diag::Severity::Note)
+        .filter(|d| d.code.as_str() == "N0205" && d.severity == rigor::diag::Severity::Note)
         .count();
     (errors, notes, r)
 }
@@ -282,7 +282,7 @@ fn two_independent_mistakes_stay_two_errors_and_a_consequence_becomes_a_note() {
     let r = check(&format!("{base}claim [twice] 2 I_O = 2 m L^2/3\n"));
     assert_eq!(errors(&r), 1, "{:?}", r.diagnostics);
     assert!(
-        r.diagnostics.iter().any(|d| d.code == "N0206"),
+        r.diagnostics.iter().any(|d| d.code.as_str() == "N0206"),
         "{:?}",
         r.diagnostics
     );
@@ -292,5 +292,5 @@ fn two_independent_mistakes_stay_two_errors_and_a_consequence_becomes_a_note() {
         "{base}claim [slip] m L^2/12 + m L^2/4 = m L^2/6\n"
     ));
     assert_eq!(errors(&r), 2, "{:?}", r.diagnostics);
-    assert!(!r.diagnostics.iter().any(|d| d.code == "N0206"));
+    assert!(!r.diagnostics.iter().any(|d| d.code.as_str() == "N0206"));
 }

@@ -55,7 +55,7 @@ fn a_missing_import_is_an_error_at_the_path() {
     let r = check_source("main.deriv", MAIN, &crate::no_budget(), &files);
     assert!(r.input_error);
     let d = &r.diagnostics[0];
-    assert_eq!(d.code, "E0206");
+    assert_eq!(d.code.as_str(), "E0206");
     assert!(
         d.message.contains("cannot read \"lib/rod.deriv\""),
         "{}",
