@@ -113,6 +113,7 @@ impl Checker<'_, '_> {
                     rhs: None,
                     status,
                     units: None,
+                    mistake: None,
                 });
                 break;
             };
@@ -163,6 +164,15 @@ impl Checker<'_, '_> {
                 }
                 _ => None,
             });
+            // What the link got wrong, from the one error it reported.
+            let mistake = match status {
+                Status::Failed | Status::Undecided => self
+                    .report
+                    .diagnostics
+                    .get(before..)
+                    .and_then(|ds| ds.iter().find_map(|d| d.mistake)),
+                _ => None,
+            };
             claim.links.push(LinkReport {
                 span,
                 op: link.op,
@@ -170,6 +180,7 @@ impl Checker<'_, '_> {
                 rhs: Some(plain(&rhs)),
                 status,
                 units: link_units,
+                mistake,
             });
             prev = rhs;
             prev_divs = divs;
@@ -510,6 +521,7 @@ impl Checker<'_, '_> {
                 rhs: None,
                 status: status.clone(),
                 units: None,
+                mistake: None,
             });
         }
         self.report.claims.push(claim);

@@ -714,17 +714,19 @@ fn part_outcome(checked: &FileReport, part: &Part, whole: Span) -> (Vec<Status>,
     (statuses, diagnostics)
 }
 
+/// Whether `d` shows its relation false (or its units inconsistent), rather than not
+/// shown: in a chain whose first link states a relation, that is a mistake.
+fn refuted(d: &Diagnostic) -> bool {
+    matches!(
+        d.code,
+        Code::Refuted | Code::Inequality | Code::Approximation | Code::DivisionByZero | Code::Units
+    )
+}
+
 /// The verdict on a placed chain: its later links must follow (else it failed); its
 /// first link must hold on its own, or state a relation for a lone symbol.
 fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
     let holds = |s: &[Status]| !s.is_empty() && s.iter().all(Status::is_verified);
-    let refuted = [
-        Code::Refuted,
-        Code::Inequality,
-        Code::Approximation,
-        Code::DivisionByZero,
-        Code::Units,
-    ];
     let (first_statuses, mut first_diags) = match &p.first {
         Some(part) => part_outcome(checked, part, p.span),
         None => (Vec::new(), Vec::new()),
@@ -734,7 +736,7 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
         .rest
         .as_ref()
         .map(|part| part_outcome(checked, part, p.span));
-    if p.firm && !p.states && first_diags.iter().any(|x| refuted.contains(&x.code)) {
+    if p.firm && !p.states && first_diags.iter().any(refuted) {
         return ChainReport {
             span: p.span,
             verdict: Verdict::Failed,
@@ -756,15 +758,14 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
         diagnostics,
     };
     if let Some((s, mut d)) = rest {
-        if d.iter().any(|x| refuted.contains(&x.code)) {
-            if d.iter()
-                .any(|x| refuted.contains(&x.code) && later_is_a_mistake(p, x))
-            {
+        if d.iter().any(refuted) {
+            if d.iter().any(|x| refuted(x) && later_is_a_mistake(p, x)) {
                 return report(Verdict::Failed, d);
             }
-            for x in d.iter_mut().filter(|x| refuted.contains(&x.code)) {
+            for x in d.iter_mut().filter(|x| refuted(x)) {
                 x.message = later_needs(p, x);
                 x.code = Code::NotVerified;
+                x.mistake = None;
             }
             first_diags.extend(d);
             return report(Verdict::NeedsContext, first_diags);
@@ -786,8 +787,9 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
     // What the first link needs is context, not a mistake: notes state relations that
     // hold by definitions and laws given in prose.
     for d in &mut first_diags {
-        if refuted.contains(&d.code) {
+        if refuted(d) {
             d.code = Code::NotVerified;
+            d.mistake = None;
             d.message = "needs context: this relation does not hold for every value of its symbols; the document must define or give it".into();
         }
     }

@@ -254,6 +254,7 @@ fn report_with(path: &str, src: &str, statuses: Vec<Status>) -> FileReport {
                         rhs: None,
                         status,
                         units: None,
+                        mistake: None,
                     });
                 }
                 let line = crate::diag::line_col(src, stmt.span.start).0;

@@ -294,3 +294,76 @@ fn two_independent_mistakes_stay_two_errors_and_a_consequence_becomes_a_note() {
     assert_eq!(errors(&r), 2, "{:?}", r.diagnostics);
     assert!(!r.diagnostics.iter().any(|d| d.code.as_str() == "N0206"));
 }
+
+/// The kind of mistake travels as data, from where the checker finds it: on the
+/// failing link, on its diagnostic, and into mark's gradebook kind. The words of the
+/// message play no part (a symbol named `power` or `missing` changes nothing).
+#[test]
+fn a_failed_link_carries_its_kind_of_mistake() {
+    use rigor::diag::Mistake;
+    let cases: &[(&str, Mistake, &str)] = &[
+        // A whole side with the wrong sign, and one term with it.
+        (
+            "symbols a b > 0\nclaim a - b = b - a\n",
+            Mistake::Sign,
+            "sign",
+        ),
+        (
+            "symbols a power > 0\nclaim a + power = a - power\n",
+            Mistake::Sign,
+            "sign",
+        ),
+        (
+            "symbols m L > 0\nclaim m L^2/6 = m L^2/12\n",
+            Mistake::Factor,
+            "factor",
+        ),
+        (
+            "symbols a b > 0\nclaim a + b = a + 2 b\n",
+            Mistake::Factor,
+            "factor",
+        ),
+        (
+            "symbols x y > 0\nclaim x^2 + y = x^2 + y^2\n",
+            Mistake::Power,
+            "power",
+        ),
+        (
+            "symbols m L > 0\nclaim m L^2 = m L^3\n",
+            Mistake::Power,
+            "power",
+        ),
+        (
+            "symbols m d missing > 0\nsymbols I_G\nclaim I_G = I_G + m d^2\n",
+            Mistake::MissingTerm,
+            "missing_term",
+        ),
+        (
+            "symbols m g > 0\nunknowns F\nclaim F = m g\n",
+            Mistake::MissingFact,
+            "missing_fact",
+        ),
+    ];
+    for (src, mistake, kind) in cases {
+        let r = rigor::check_source(
+            "k.deriv",
+            src,
+            &crate::no_budget(),
+            &rigor::MemoryResolver::new(),
+        );
+        let link = r
+            .claims
+            .iter()
+            .flat_map(|c| &c.links)
+            .find(|l| !l.status.is_verified())
+            .unwrap_or_else(|| panic!("{src}: every link verified"));
+        assert_eq!(link.mistake, Some(*mistake), "{src}: {:?}", r.diagnostics);
+        let d = r
+            .diagnostics
+            .iter()
+            .find(|d| d.severity == rigor::diag::Severity::Error)
+            .unwrap_or_else(|| panic!("{src}: no error"));
+        assert_eq!(d.mistake, Some(*mistake), "{src}: {d:?}");
+        assert_eq!(rigor::mark::kind(d), *kind, "{src}: {d:?}");
+    }
+}

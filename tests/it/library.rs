@@ -234,7 +234,9 @@ fn a_forgotten_mass_times_squared_distance_is_named_where_inertia_is_concerned()
         };
         let (a, b) = (lower(a), lower(b));
         let d = a.sub(&b).unwrap();
-        rigor::decide::diagnose(&a, &b, &d).unwrap_or_default()
+        let d = rigor::decide::diagnose(&a, &b, &d).expect("a diagnosis");
+        assert_eq!(d.mistake, rigor::diag::Mistake::MissingTerm);
+        d.text
     };
     assert_eq!(
         hint("I_G", "I_G + m d^2"),
