@@ -206,7 +206,7 @@ pub enum FailureKind {
 /// What a step that does not hold got wrong, as the checker found it (one term as
 /// written, or a whole side); the words for it are made once, beside it.
 #[non_exhaustive]
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub enum Mistake {
     /// A term, or a whole side, with the wrong sign.
     Sign,
@@ -224,6 +224,9 @@ pub enum Mistake {
     ZeroSide,
     /// Unknowns that no fact determines: a fact is missing.
     MissingFact,
+    /// A quantity declared with `symbols`, as given, that the facts determine: with it
+    /// an unknown the step follows. Its name.
+    DeclaredGiven(String),
 }
 
 /// A message about a spot in a source.

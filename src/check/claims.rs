@@ -170,7 +170,7 @@ impl Checker<'_, '_> {
                     .report
                     .diagnostics
                     .get(before..)
-                    .and_then(|ds| ds.iter().find_map(|d| d.mistake)),
+                    .and_then(|ds| ds.iter().find_map(|d| d.mistake.clone())),
                 _ => None,
             };
             claim.links.push(LinkReport {

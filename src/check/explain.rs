@@ -164,7 +164,8 @@ impl Checker<'_, '_> {
                 ),
                 span,
                 format!("with `unknowns {name}` this step follows"),
-            );
+            )
+            .with_mistake(Some(Mistake::DeclaredGiven(name.clone())));
             d.notes.push(format!(
                 "declare it with `unknowns {name}` (keeping `symbols {name}` for its sign, if it has one) so that rigor solves for it"
             ));

@@ -4,7 +4,7 @@
 //! document: its symbols declared as reals (or as the document's `rigor:` comments
 //! say), a chain whose left side is a lone new symbol defining it for later chains.
 
-use crate::diag::Code;
+use crate::diag::{Code, Mistake};
 mod extract;
 mod mass;
 
@@ -254,7 +254,10 @@ impl Scope {
             let more: Vec<String> = checked
                 .diagnostics
                 .iter()
-                .filter_map(|d| d.primary.as_ref().and_then(|(_, hint)| determined(hint)))
+                .filter_map(|d| match &d.mistake {
+                    Some(Mistake::DeclaredGiven(name)) => Some(name.clone()),
+                    _ => None,
+                })
                 .filter(|n| !b.known.contains(n) && !solve.contains(n))
                 .collect();
             if more.is_empty() || round == 2 {
@@ -280,14 +283,6 @@ impl Scope {
             solve.extend(more);
         }
     }
-}
-
-/// The name the checker found the facts determine, from its hint "with `unknowns F`
-/// this step follows".
-fn determined(hint: &str) -> Option<String> {
-    let rest = hint.strip_prefix("with `unknowns ")?;
-    let name = rest.strip_suffix("` this step follows")?;
-    Some(name.to_string())
 }
 
 /// A link after the first of a chain.

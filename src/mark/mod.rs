@@ -157,7 +157,7 @@ pub fn kind(d: &Diagnostic) -> &'static str {
         Some(Mistake::MissingFact) => "missing_fact",
         Some(Mistake::ExtraTerm) => "extra_term",
         Some(Mistake::MissingTerm | Mistake::Difference) => "missing_term",
-        Some(Mistake::ZeroSide) | None => "undecided",
+        Some(Mistake::ZeroSide | Mistake::DeclaredGiven(_)) | None => "undecided",
     }
 }
 
