@@ -961,7 +961,7 @@ fn read(
     };
     let after = e.span.end.saturating_sub(at);
     match extract::equals_after(rel, after) {
-        Some(eq) if e.message.contains("`dm` with limits") => {
+        Some(eq) if e.kind == crate::syntax::error::SyntaxKind::MassElementWithLimits => {
             let mut out = vec![unread(Span::new(at, at + eq), e.message)];
             let (more, chain) = read(&rel[eq + 1..], at + eq + 1, None, popts);
             out.extend(more);

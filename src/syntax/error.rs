@@ -11,6 +11,19 @@ pub struct SyntaxError {
     pub span: Span,
     /// A message that makes sense on its own, e.g. "expected an expression after `+`".
     pub message: String,
+    /// Its kind, for a reader that acts on it (lint), never on the message's words.
+    pub kind: SyntaxKind,
+}
+
+/// The kind of a syntax error.
+#[non_exhaustive]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SyntaxKind {
+    /// Input that does not read.
+    #[default]
+    Malformed,
+    /// `\int … dm` with limits: a mass element defined in prose, not a coordinate.
+    MassElementWithLimits,
 }
 
 impl SyntaxError {
@@ -19,7 +32,14 @@ impl SyntaxError {
         SyntaxError {
             span,
             message: message.into(),
+            kind: SyntaxKind::Malformed,
         }
+    }
+
+    /// The same error, of kind `kind`.
+    pub fn of_kind(mut self, kind: SyntaxKind) -> SyntaxError {
+        self.kind = kind;
+        self
     }
 }
 
