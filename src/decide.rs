@@ -1,6 +1,7 @@
 //! Deciding `A = B`: equal by normal form, not equal by an exact argument or a
 //! checked counterexample, else undecided. Nothing is ever decided equal by sampling.
 
+use crate::diag::Mistake;
 use crate::interval::{Interval, Prec};
 use crate::lower::Need;
 use crate::normal::atom::{self, Atom, AtomId};
@@ -53,8 +54,8 @@ pub enum Verdict {
         exact: bool,
         /// A checked counterexample, where one was found.
         counterexample: Option<Counterexample>,
-        /// A one-line diagnosis of the difference, when it is simple.
-        diagnosis: Option<String>,
+        /// What the difference says went wrong, when it is simple.
+        diagnosis: Option<Diagnosis>,
     },
     /// Neither could be established.
     Undecided {
@@ -304,30 +305,87 @@ pub fn independent(r: &Rat) -> bool {
     r.atoms().into_iter().all(independent_atom)
 }
 
-/// A one-line description of how `a` differs from `b`.
-pub fn diagnose(a: &Rat, b: &Rat, d: &Rat) -> Option<String> {
+/// How the two sides of a refuted `=` differ: the kind of mistake, which every room
+/// matches on, and the one sentence that says it in a diagnostic.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Diagnosis {
+    /// The kind.
+    pub mistake: Mistake,
+    /// Whether it is about a whole side (a constant factor, a sign): then it says it
+    /// best, before any one term.
+    pub whole: bool,
+    /// The sentence: `the two sides have opposite signs (a sign error?)`.
+    pub text: String,
+}
+
+impl Diagnosis {
+    fn new(mistake: Mistake, text: impl Into<String>) -> Diagnosis {
+        Diagnosis {
+            mistake,
+            whole: false,
+            text: text.into(),
+        }
+    }
+
+    /// A one-term diagnosis (`check/terms.rs`).
+    pub(crate) fn term(mistake: Mistake, text: String) -> Diagnosis {
+        Diagnosis::new(mistake, text)
+    }
+
+    fn whole(mistake: Mistake, text: impl Into<String>) -> Diagnosis {
+        Diagnosis {
+            whole: true,
+            ..Diagnosis::new(mistake, text)
+        }
+    }
+}
+
+impl std::fmt::Display for Diagnosis {
+    /// Its sentence.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.text)
+    }
+}
+
+/// How `a` differs from `b` (`d` = `a − b`), when it is simple.
+pub fn diagnose(a: &Rat, b: &Rat, d: &Rat) -> Option<Diagnosis> {
     if b.is_zero() {
-        return Some("the right side is 0 but the left side is not".into());
+        return Some(Diagnosis::new(
+            Mistake::ZeroSide,
+            "the right side is 0 but the left side is not",
+        ));
     }
     if a.is_zero() {
-        return Some("the left side is 0 but the right side is not".into());
+        return Some(Diagnosis::new(
+            Mistake::ZeroSide,
+            "the left side is 0 but the right side is not",
+        ));
     }
     if let Ok(r) = a.div(b) {
         if let Some(c) = r.as_constant() {
             if c == -Q::one() {
-                return Some("the two sides have opposite signs (a sign error?)".into());
+                return Some(Diagnosis::whole(
+                    Mistake::Sign,
+                    "the two sides have opposite signs (a sign error?)",
+                ));
             }
-            return Some(format!(
-                "the left side is {} × the right side (a constant factor)",
-                show_q(&c)
+            return Some(Diagnosis::whole(
+                Mistake::Factor,
+                format!(
+                    "the left side is {} × the right side (a constant factor)",
+                    show_q(&c)
+                ),
             ));
         }
         let mut syms = Vec::new();
         symbols_in(&r, &mut syms);
         if syms.is_empty() && r.num().len() == 1 && r.den().len() == 1 {
-            return Some(format!(
-                "the left side is {} × the right side (a constant factor)",
-                plain(&r)
+            return Some(Diagnosis::whole(
+                Mistake::Factor,
+                format!(
+                    "the left side is {} × the right side (a constant factor)",
+                    plain(&r)
+                ),
             ));
         }
         if r.num().len() == 1 && r.den().len() == 1 {
@@ -335,14 +393,14 @@ pub fn diagnose(a: &Rat, b: &Rat, d: &Rat) -> Option<String> {
                 [x] => atom::sym_name(*x).is_some(),
                 _ => false,
             };
-            let note = if one_symbol {
-                "a wrong power?"
+            let (mistake, note) = if one_symbol {
+                (Mistake::Power, "a wrong power?")
             } else {
-                "a missing or extra factor?"
+                (Mistake::Factor, "a missing or extra factor?")
             };
-            return Some(format!(
-                "the left side is {} × the right side ({note})",
-                plain(&r)
+            return Some(Diagnosis::new(
+                mistake,
+                format!("the left side is {} × the right side ({note})", plain(&r)),
             ));
         }
     }
@@ -368,20 +426,26 @@ pub fn diagnose(a: &Rat, b: &Rat, d: &Rat) -> Option<String> {
             (true, _) => ": parallel-axis terms (mass × squared distance)?",
         };
         if has_terms(a, d) {
-            return Some(format!(
-                "the left side has {n} extra term{s}: {}{pa}",
-                terms_of(d).join(", ")
+            return Some(Diagnosis::new(
+                Mistake::ExtraTerm,
+                format!(
+                    "the left side has {n} extra term{s}: {}{pa}",
+                    terms_of(d).join(", ")
+                ),
             ));
         }
         if has_terms(b, &d.neg()) {
-            return Some(format!(
-                "the left side is missing {them} {} that the right side has{pa}",
-                terms_of(&d.neg()).join(", ")
+            return Some(Diagnosis::new(
+                Mistake::MissingTerm,
+                format!(
+                    "the left side is missing {them} {} that the right side has{pa}",
+                    terms_of(&d.neg()).join(", ")
+                ),
             ));
         }
-        return Some(format!(
-            "the two sides differ by {} (left − right){pa}",
-            plain(d)
+        return Some(Diagnosis::new(
+            Mistake::Difference,
+            format!("the two sides differ by {} (left − right){pa}", plain(d)),
         ));
     }
     None

@@ -24,25 +24,232 @@ impl Severity {
     }
 }
 
+/// Every diagnostic code rigor emits: one table, with `docs/errors.md` as its index.
+/// Rooms decide by these variants; the text `E0301` is made only for output
+/// ([`Code::as_str`]).
+#[non_exhaustive]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Code {
+    /// `E0001`: A syntax error.
+    Syntax,
+    /// `E0002`: A file cannot be read.
+    Unreadable,
+    /// `E0101`: An expression has no value (an unknown function, a bad integrand, a root of a negative…).
+    NoValue,
+    /// `E0201`: A name used but never declared.
+    Undeclared,
+    /// `E0202`: A label given twice.
+    DuplicateLabel,
+    /// `E0203`: A name declared twice (or a `let` redefined).
+    DeclaredTwice,
+    /// `E0205`: `by [..]` or `result` names a label that does not exist.
+    UnknownLabel,
+    /// `E0206`: A `use` that cannot be read or resolved.
+    ImportFailed,
+    /// `E0207`: A special case that `where` cannot make.
+    BadWhere,
+    /// `E0208`: A `with` that cannot be applied to an imported claim.
+    BadWith,
+    /// `E0301`: An `=` step shown false.
+    Refuted,
+    /// `E0302`: A step neither verified nor refuted.
+    NotVerified,
+    /// `E0303`: An inequality (`!=`, `<`, `<=`, `>`, `>=`) that is false or not shown.
+    Inequality,
+    /// `E0304`: An approximation (`~=`) that does not hold.
+    Approximation,
+    /// `E0305`: A division by zero: a side condition that fails.
+    DivisionByZero,
+    /// `E0306`: Facts that are false or contradict each other.
+    FalseFacts,
+    /// `E0401`: Units that disagree.
+    Units,
+    /// `E0402`: A bad unit declaration.
+    BadUnit,
+    /// `E0403`: A symbol without a unit, in a file that declares units.
+    NoUnit,
+    /// `E0901`: A size limit was reached (nesting, terms, exponents, file size).
+    SizeLimit,
+    /// `E0902`: The time budget ran out.
+    TimeBudget,
+    /// `E0903`: rigor's internal check (the guard) disagrees with a verdict.
+    GuardDisagrees,
+    /// `W0101`: A product after `/` read as a factor above the line.
+    Reading,
+    /// `W0102`: A body with negative mass.
+    NegativeMass,
+    /// `W0401`: One kind of quantity in different scales.
+    MixedScales,
+    /// `N0205`: Not checked because of an earlier mistake.
+    NotChecked,
+    /// `N0206`: A consequence of the first mistake (the likely root, tried).
+    Consequence,
+}
+
+impl Code {
+    /// Every code, in the order of the index.
+    pub const ALL: &'static [Code] = &[
+        Code::Syntax,
+        Code::Unreadable,
+        Code::NoValue,
+        Code::Undeclared,
+        Code::DuplicateLabel,
+        Code::DeclaredTwice,
+        Code::UnknownLabel,
+        Code::ImportFailed,
+        Code::BadWhere,
+        Code::BadWith,
+        Code::Refuted,
+        Code::NotVerified,
+        Code::Inequality,
+        Code::Approximation,
+        Code::DivisionByZero,
+        Code::FalseFacts,
+        Code::Units,
+        Code::BadUnit,
+        Code::NoUnit,
+        Code::SizeLimit,
+        Code::TimeBudget,
+        Code::GuardDisagrees,
+        Code::Reading,
+        Code::NegativeMass,
+        Code::MixedScales,
+        Code::NotChecked,
+        Code::Consequence,
+    ];
+
+    /// The code as printed: `E0301`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Code::Syntax => "E0001",
+            Code::Unreadable => "E0002",
+            Code::NoValue => "E0101",
+            Code::Undeclared => "E0201",
+            Code::DuplicateLabel => "E0202",
+            Code::DeclaredTwice => "E0203",
+            Code::UnknownLabel => "E0205",
+            Code::ImportFailed => "E0206",
+            Code::BadWhere => "E0207",
+            Code::BadWith => "E0208",
+            Code::Refuted => "E0301",
+            Code::NotVerified => "E0302",
+            Code::Inequality => "E0303",
+            Code::Approximation => "E0304",
+            Code::DivisionByZero => "E0305",
+            Code::FalseFacts => "E0306",
+            Code::Units => "E0401",
+            Code::BadUnit => "E0402",
+            Code::NoUnit => "E0403",
+            Code::SizeLimit => "E0901",
+            Code::TimeBudget => "E0902",
+            Code::GuardDisagrees => "E0903",
+            Code::Reading => "W0101",
+            Code::NegativeMass => "W0102",
+            Code::MixedScales => "W0401",
+            Code::NotChecked => "N0205",
+            Code::Consequence => "N0206",
+        }
+    }
+
+    /// The kind of failure a diagnostic of this code reports; `None` for warnings and
+    /// notes. What was wrong in a refuted or unverified step is its [`Mistake`]
+    /// ([`Diagnostic::mistake`]).
+    pub fn failure(self) -> Option<FailureKind> {
+        Some(match self {
+            Code::Syntax
+            | Code::Unreadable
+            | Code::NoValue
+            | Code::Undeclared
+            | Code::DuplicateLabel
+            | Code::DeclaredTwice
+            | Code::UnknownLabel
+            | Code::ImportFailed
+            | Code::BadWhere
+            | Code::BadWith => FailureKind::Input,
+            Code::NotVerified | Code::GuardDisagrees => FailureKind::NotVerified,
+            Code::Units | Code::BadUnit | Code::NoUnit => FailureKind::Units,
+            Code::SizeLimit | Code::TimeBudget => FailureKind::Limit,
+            Code::FalseFacts => FailureKind::FalseFacts,
+            Code::Refuted | Code::Inequality | Code::Approximation | Code::DivisionByZero => {
+                FailureKind::Refuted
+            }
+            Code::Reading | Code::NegativeMass | Code::MixedScales => return None,
+            Code::NotChecked | Code::Consequence => return None,
+        })
+    }
+}
+
+impl std::fmt::Display for Code {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// The kind of failure a diagnostic reports, from its code ([`Code::failure`]).
+#[non_exhaustive]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FailureKind {
+    /// A relation shown false (or a division shown to be by zero).
+    Refuted,
+    /// Neither verified nor refuted.
+    NotVerified,
+    /// Units that disagree or are not declared.
+    Units,
+    /// Input rigor cannot read: syntax, names, labels, imports, `where`, `with`.
+    Input,
+    /// Givens that are false or contradict each other.
+    FalseFacts,
+    /// A size limit or the time budget.
+    Limit,
+}
+
+/// What a step that does not hold got wrong, as the checker found it (one term as
+/// written, or a whole side); the words for it are made once, beside it.
+#[non_exhaustive]
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Mistake {
+    /// A term, or a whole side, with the wrong sign.
+    Sign,
+    /// A constant factor, or a factor of several quantities, off.
+    Factor,
+    /// One power of a symbol too many or too few (a term, or a side by a power).
+    Power,
+    /// The left side lacks terms that the right side has.
+    MissingTerm,
+    /// The left side has terms that should not be there.
+    ExtraTerm,
+    /// The sides differ by a few terms that neither side holds as written.
+    Difference,
+    /// One side is 0 and the other is not.
+    ZeroSide,
+    /// Unknowns that no fact determines: a fact is missing.
+    MissingFact,
+    /// A quantity declared with `symbols`, as given, that the facts determine: with it
+    /// an unknown the step follows. Its name.
+    DeclaredGiven(String),
+}
+
 /// A message about a spot in a source.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Diagnostic {
     /// Severity.
     pub severity: Severity,
     /// A stable code, e.g. `E0301`.
-    pub code: &'static str,
+    pub code: Code,
     /// The headline; it makes sense on its own.
     pub message: String,
     /// The spot and what to say under it.
     pub primary: Option<(Span, String)>,
     /// Further lines (`= note: …`).
     pub notes: Vec<String>,
+    /// What the step got wrong, when the checker knows (a refuted or unverified `=`).
+    pub mistake: Option<Mistake>,
 }
 
 impl Diagnostic {
     /// An error with a primary span.
     pub fn error(
-        code: &'static str,
+        code: Code,
         message: impl Into<String>,
         span: Span,
         label: impl Into<String>,
@@ -53,7 +260,19 @@ impl Diagnostic {
             message: message.into(),
             primary: Some((span, label.into())),
             notes: Vec::new(),
+            mistake: None,
         }
+    }
+
+    /// The same diagnostic, with what the step got wrong.
+    pub fn with_mistake(mut self, m: Option<Mistake>) -> Diagnostic {
+        self.mistake = m;
+        self
+    }
+
+    /// The kind of failure it reports (from its code); `None` for warnings and notes.
+    pub fn failure(&self) -> Option<FailureKind> {
+        self.code.failure()
     }
 
     /// Adds a note.

@@ -4,6 +4,7 @@
 //! ([`crate::check_source`]) never touches the file system.
 
 use crate::check::{check_source, FileReport, ImportError, Options, Resolver, Source};
+use crate::diag::Code;
 use crate::diag::Diagnostic;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -142,10 +143,11 @@ fn unreadable(path: &Path, msg: String) -> FileReport {
         input_error: true,
         diagnostics: vec![Diagnostic {
             severity: crate::diag::Severity::Error,
-            code: "E0002",
+            code: Code::Unreadable,
             message: format!("cannot read {}: {msg}", path.display()),
             primary: None,
             notes: Vec::new(),
+            mistake: None,
         }],
         ..FileReport::default()
     }

@@ -9,6 +9,7 @@ use super::solve::Fact;
 use super::step::LinkInput;
 use super::walk::{Checker, Known};
 use crate::clock::Deadline;
+use crate::diag::{Code, FailureKind};
 use crate::lower::Condition;
 use crate::normal::atom::{self, AtomId};
 use crate::normal::print::plain;
@@ -44,7 +45,7 @@ impl Checker<'_, '_> {
                     *reported = true;
                     self.report.diagnostics.push(
                         crate::diag::Diagnostic::error(
-                            "E0902",
+                            Code::TimeBudget,
                             "not checked: the time budget for this file ran out here",
                             span,
                             "not checked",
@@ -111,6 +112,7 @@ impl Checker<'_, '_> {
                     rhs: None,
                     status,
                     units: None,
+                    mistake: None,
                 });
                 break;
             };
@@ -161,6 +163,15 @@ impl Checker<'_, '_> {
                 }
                 _ => None,
             });
+            // What the link got wrong, from the one error it reported.
+            let mistake = match status {
+                Status::Failed | Status::Undecided => self
+                    .report
+                    .diagnostics
+                    .get(before..)
+                    .and_then(|ds| ds.iter().find_map(|d| d.mistake.clone())),
+                _ => None,
+            };
             claim.links.push(LinkReport {
                 span,
                 op: link.op,
@@ -168,6 +179,7 @@ impl Checker<'_, '_> {
                 rhs: Some(plain(&rhs)),
                 status,
                 units: link_units,
+                mistake,
             });
             prev = rhs;
             prev_divs = divs;
@@ -184,7 +196,7 @@ impl Checker<'_, '_> {
         // in scope that fails now may hold with it (from contradictory facts anything
         // follows), so the contradiction is the one mistake.
         if let (None, Some(given)) = (by, self.contradicted.clone()) {
-            if !d.code.starts_with("E04") {
+            if d.failure() != Some(FailureKind::Units) {
                 self.not_checked_note(
                     format!("not checked: it needs the facts in scope, but {given} contradicts the others"),
                     span,
@@ -202,7 +214,7 @@ impl Checker<'_, '_> {
                 .collect(),
             // Undecided on all the facts in scope, some of which failed earlier: the
             // missing fact is most likely one of those.
-            None if d.code == "E0302" => {
+            None if matches!(d.code, Code::NotVerified) => {
                 let first = self
                     .failed_labels
                     .iter()
@@ -221,12 +233,11 @@ impl Checker<'_, '_> {
             }
             _ => Vec::new(),
         };
-        if cited.is_empty() || d.code.starts_with("E04") {
+        if cited.is_empty() || d.failure() == Some(FailureKind::Units) {
             // "Not verified" is neither shown true nor shown false.
-            let status = if d.code == "E0302" {
-                Status::Undecided
-            } else {
-                Status::Failed
+            let status = match d.code {
+                Code::NotVerified => Status::Undecided,
+                _ => Status::Failed,
             };
             self.report.diagnostics.push(d);
             return status;
@@ -307,7 +318,7 @@ impl Checker<'_, '_> {
 
     /// The note (`msg`) of a link not checked because what it cites did not hold.
     fn not_checked_note(&mut self, msg: String, span: Span) {
-        let mut d = crate::diag::Diagnostic::error("N0205", msg, span, "not checked");
+        let mut d = crate::diag::Diagnostic::error(Code::NotChecked, msg, span, "not checked");
         d.severity = crate::diag::Severity::Note;
         self.report
             .diagnostics
@@ -316,7 +327,7 @@ impl Checker<'_, '_> {
 
     /// A note N0205 for something not checked because of a mistake reported earlier.
     pub(super) fn note_not_checked(&mut self, msg: String, span: Span) {
-        let mut d = crate::diag::Diagnostic::error("N0205", msg, span, "not checked");
+        let mut d = crate::diag::Diagnostic::error(Code::NotChecked, msg, span, "not checked");
         d.severity = crate::diag::Severity::Note;
         self.report
             .diagnostics
@@ -390,14 +401,14 @@ impl Checker<'_, '_> {
                 None
             };
             if let Some((why, hint)) = problem {
-                self.error("E0207", why, a.name.span, &hint);
+                self.error(Code::BadWhere, why, a.name.span, &hint);
                 return None;
             }
             let x = atom::sym(name);
             let v = self.lower(&a.value, &mut Vec::new())?;
             if let Err(m) = respects_sign(name, self.env.signs.declared(x), &v, &self.env.signs) {
                 self.error(
-                    "E0207",
+                    Code::BadWhere,
                     m,
                     a.value.span,
                     "this value does not respect the declared sign",
@@ -411,7 +422,7 @@ impl Checker<'_, '_> {
             }
             if let Some(why) = self.outside_range(x, &v) {
                 self.error(
-                    "E0207",
+                    Code::BadWhere,
                     why,
                     a.value.span,
                     "this value is outside the declared interval",
@@ -509,6 +520,7 @@ impl Checker<'_, '_> {
                 rhs: None,
                 status: status.clone(),
                 units: None,
+                mistake: None,
             });
         }
         self.report.claims.push(claim);
@@ -594,7 +606,7 @@ impl Checker<'_, '_> {
                     })
             };
             self.error(
-                "E0205",
+                Code::UnknownLabel,
                 format!("unknown label [{}]", l.name),
                 l.span,
                 &hint,

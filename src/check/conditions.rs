@@ -7,6 +7,7 @@ use super::signs::{essential_factor, sign_of};
 use super::step::{LinkInput, Reduced};
 use super::walk::Checker;
 use super::zeros::forced_zero;
+use crate::diag::Code;
 use crate::diag::Diagnostic;
 use crate::lower::{Condition, Need};
 use crate::normal::print::plain;
@@ -87,7 +88,7 @@ impl Checker<'_, '_> {
                 None => format!("this step divides by {}, which `where` makes 0", plain(d0)),
             };
             return Err(Diagnostic::error(
-                "E0305",
+                Code::DivisionByZero,
                 message,
                 input.span,
                 "division by zero",
@@ -115,7 +116,7 @@ impl Checker<'_, '_> {
                 // rigor's own way of solving the facts divided by zero: that says nothing
                 // about the step, which may well hold (solved another way).
                 return Err(Diagnostic::error(
-                    "E0302",
+                    Code::NotVerified,
                     format!(
                         "not verified: solving the facts for the unknowns divides by {}, which the facts make zero; rigor could not settle this step another way",
                         plain(d)
@@ -126,7 +127,7 @@ impl Checker<'_, '_> {
             }
             if zero {
                 return Err(Diagnostic::error(
-                    "E0305",
+                    Code::DivisionByZero,
                     format!(
                         "this step divides by {}, which is zero by the facts",
                         plain(d)
@@ -148,7 +149,7 @@ impl Checker<'_, '_> {
         }
         if bad {
             return Err(Diagnostic::error(
-                "E0305",
+                Code::DivisionByZero,
                 format!(
                     "this step takes ln or a square root of {}, which is not {op} 0 here",
                     plain(d)

@@ -9,6 +9,7 @@ use super::solve::{Fact, Step};
 use super::step::{LinkInput, Reduced};
 use super::walk::{unknown_atom, Checker};
 use crate::decide::Evaluator;
+use crate::diag::Code;
 use crate::diag::Diagnostic;
 use crate::guard::{self, Ball};
 use crate::interval::Prec;
@@ -148,7 +149,7 @@ impl Checker<'_, '_> {
             {
                 self.report.diagnostics.push(
                     Diagnostic::error(
-                        "E0302",
+                        Code::NotVerified,
                         format!(
                             "not verified: this step assumes {}, and rigor found no values that satisfy the facts with that: the facts may rule it out",
                             side_conditions.join(" and ")
@@ -328,7 +329,7 @@ fn disagreement(
     let mut at: Vec<String> = point.iter().map(|(n, v)| format!("{n} = {v}")).collect();
     at.sort();
     Diagnostic::error(
-        "E0903",
+        Code::GuardDisagrees,
         "undecided: rigor's internal check disagrees with the exact verdict",
         input.span,
         "undecided",

@@ -3,6 +3,7 @@
 //! the algebra: a link whose sides disagree in units fails with both units named.
 
 use super::walk::Checker;
+use crate::diag::Code;
 use crate::diag::Diagnostic;
 use crate::syntax::ast::{Chain, Expr, Span, UnitDecl};
 use crate::units::check::{dim_and_scales, mismatch, DimV, UnitEnv, UnitProblem};
@@ -12,7 +13,7 @@ impl Checker<'_, '_> {
     pub(super) fn declare_unit(&mut self, d: &UnitDecl) {
         if self.units.contains_key(&d.name.name) {
             self.error(
-                "E0402",
+                Code::BadUnit,
                 format!("`{}` already has a unit", d.name.name),
                 d.name.span,
                 "a symbol has one unit",
@@ -26,7 +27,7 @@ impl Checker<'_, '_> {
             Err(e) => {
                 let start = d.unit_span.start + e.at;
                 let span = Span::new(start, start + e.len.max(1));
-                self.error("E0402", e.message, span, "");
+                self.error(Code::BadUnit, e.message, span, "");
             }
         }
     }
@@ -54,7 +55,7 @@ impl Checker<'_, '_> {
             .map(|e| dim_and_scales(e, &env, &mut missing, &mut mixed))
             .collect();
         for m in mixed {
-            let mut d = Diagnostic::error("W0401", m.message, m.span, "mixed scales");
+            let mut d = Diagnostic::error(Code::MixedScales, m.message, m.span, "mixed scales");
             d.severity = crate::diag::Severity::Warning;
             d.notes.extend(m.note);
             self.report.diagnostics.push(d);
@@ -62,7 +63,7 @@ impl Checker<'_, '_> {
         if !missing.is_empty() {
             missing.sort();
             self.error(
-                "E0403",
+                Code::NoUnit,
                 format!("no unit is declared for {}", missing.join(", ")),
                 span,
                 "with `units` in the file, every symbol in a relation needs one",
@@ -109,7 +110,7 @@ impl Checker<'_, '_> {
 
     /// A unit problem as a diagnostic.
     pub(super) fn unit_diagnostic(p: UnitProblem) -> Diagnostic {
-        let mut d = Diagnostic::error("E0401", p.message, p.span, "inconsistent units");
+        let mut d = Diagnostic::error(Code::Units, p.message, p.span, "inconsistent units");
         if let Some(n) = p.note {
             d.notes.push(n);
         }

@@ -6,6 +6,7 @@
 
 use super::report::FileReport;
 use super::walk::Checker;
+use crate::diag::Code;
 use crate::diag::Diagnostic;
 use crate::lower::Condition;
 use crate::normal::Rat;
@@ -294,7 +295,7 @@ fn check_in(name: &str, src: &str, loader: &mut Loader<'_>) -> (FileReport, Expo
         Err(e) => {
             report.input_error = true;
             report.diagnostics.push(Diagnostic::error(
-                "E0001",
+                Code::Syntax,
                 format!("syntax error: {}", e.message),
                 e.span,
                 "",

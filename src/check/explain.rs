@@ -7,13 +7,14 @@ use super::report::cite;
 use super::solve::Step;
 use super::solve::{apply_steps, unknown_name, Fact};
 use super::step::{LinkInput, Reduced};
+use crate::diag::Code;
 
 /// The two sides reduced by every fact in scope, and the steps that did it.
 pub(super) type Sides = (Rat, Rat, Vec<Step>);
 use super::walk::{unknown_atom, Checker};
 use crate::clock::Deadline;
 use crate::decide::Verdict;
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, Mistake};
 use crate::lower::Condition;
 use crate::normal::atom::{self, AtomId};
 use crate::normal::print::plain;
@@ -39,7 +40,7 @@ impl Checker<'_, '_> {
             super::solve::eliminate_all(&red.diff, facts, &is_unknown, signs, deadline, params).ok()
         };
         let not_verified = |headline: String, notes: Vec<String>| {
-            let mut d = Diagnostic::error("E0302", headline, span, "not verified");
+            let mut d = Diagnostic::error(Code::NotVerified, headline, span, "not verified");
             d.notes = notes;
             d
         };
@@ -156,14 +157,15 @@ impl Checker<'_, '_> {
                 free.then(|| format!(" ({name} = {} from {})", short(&plain(&v)), from.join(", ")))
             });
             let mut d = Diagnostic::error(
-                "E0302",
+                Code::NotVerified,
                 format!(
                     "not verified: the facts determine {name}{}, but `{name}` is declared with `symbols`, as a given quantity",
                     value.unwrap_or_default()
                 ),
                 span,
                 format!("with `unknowns {name}` this step follows"),
-            );
+            )
+            .with_mistake(Some(Mistake::DeclaredGiven(name.clone())));
             d.notes.push(format!(
                 "declare it with `unknowns {name}` (keeping `symbols {name}` for its sign, if it has one) so that rigor solves for it"
             ));
@@ -252,7 +254,7 @@ impl Checker<'_, '_> {
         };
         if red.timed_out() {
             let d = Diagnostic::error(
-                "E0902",
+                Code::TimeBudget,
                 "not verified: the claim ran out of its time budget (see --timeout)",
                 span,
                 "undecided",
@@ -264,15 +266,17 @@ impl Checker<'_, '_> {
             .as_ref()
             .filter(|e| !e.stuck.is_empty() && !free_state)
         {
-            let (mut d, mut extra) = self.undetermined(&e.stuck, &e.target, (&ra, &rb), span);
             // One term that, changed, makes the step follow is the likelier mistake than
             // a missing fact.
-            if let Some(why) = self.term_diagnosis(input, &e.target, &e.steps) {
-                d.message = format!("not verified: {why}");
+            let term = self.term_diagnosis(input, &e.target, &e.steps);
+            let (mut d, extra) =
+                self.undetermined(&e.stuck, &e.target, (&ra, &rb), span, term.is_some());
+            if let Some(why) = term {
+                d.message = format!("not verified: {}", why.text);
+                d.mistake = Some(why.mistake);
                 if let Some(p) = d.primary.as_mut() {
                     p.1 = "changed this way, the step follows from the facts".into();
                 }
-                extra.retain(|n| !n.starts_with("a fact about") && !n.starts_with("if "));
             }
             return with_notes(d, extra);
         }
@@ -304,20 +308,19 @@ impl Checker<'_, '_> {
                 }
                 let target = ra.sub(&rb).unwrap_or_else(|_| Rat::zero());
                 // A whole side off by a constant factor (or a sign) says it best.
-                let whole = diagnosis
-                    .as_deref()
-                    .is_some_and(|d| d.contains("constant factor") || d.contains("opposite signs"));
-                let label = (!whole)
+                let whole = diagnosis.as_ref().is_some_and(|d| d.whole);
+                let why = (!whole)
                     .then(|| self.term_diagnosis(input, &target, &steps))
                     .flatten()
-                    .or(diagnosis)
-                    .unwrap_or_else(|| "the two sides differ".into());
+                    .or(diagnosis);
                 let d = Diagnostic::error(
-                    "E0301",
+                    Code::Refuted,
                     format!("this step does not hold{using}"),
                     span,
-                    &label,
-                );
+                    why.as_ref()
+                        .map_or("the two sides differ", |w| w.text.as_str()),
+                )
+                .with_mistake(why.map(|w| w.mistake));
                 let extra = counterexample.map(|c| {
                     if c.values.is_empty() {
                         format!("the left side is {}, the right side {}", c.lhs, c.rhs)
@@ -334,7 +337,7 @@ impl Checker<'_, '_> {
             }
             Verdict::Undecided { why } => {
                 let d = Diagnostic::error(
-                    "E0302",
+                    Code::NotVerified,
                     format!("not verified{using}: rigor can neither prove nor refute this step"),
                     span,
                     "undecided",
@@ -342,20 +345,22 @@ impl Checker<'_, '_> {
                 with_notes(d, vec![why])
             }
             Verdict::Equal => with_notes(
-                Diagnostic::error("E0302", "not verified", span, ""),
+                Diagnostic::error(Code::NotVerified, "not verified", span, ""),
                 Vec::new(),
             ),
         }
     }
 
     /// Unknowns that no fact in scope determines: which, and (when a fact gives one only
-    /// through a power) how to declare it so that rigor takes the root.
+    /// through a power) how to declare it so that rigor takes the root. `explained`: one
+    /// term explains the step (then no note says a fact is missing).
     fn undetermined(
         &self,
         stuck: &[AtomId],
         target: &Rat,
         (ra, rb): (&Rat, &Rat),
         span: Span,
+        explained: bool,
     ) -> (Diagnostic, Vec<String>) {
         let facts: Vec<Fact> = self.facts.iter().map(|k| k.fact.clone()).collect();
         let mut headline = format!("not verified: nothing in scope determines {}", names(stuck));
@@ -375,7 +380,7 @@ impl Checker<'_, '_> {
         }
         let root_missing = !powers.is_empty();
         let d = Diagnostic::error(
-            "E0302",
+            Code::NotVerified,
             headline,
             span,
             if root_missing {
@@ -383,23 +388,28 @@ impl Checker<'_, '_> {
             } else {
                 "a fact may be missing"
             },
-        );
+        )
+        .with_mistake((!root_missing).then_some(Mistake::MissingFact));
         let mut notes = vec![format!(
             "after eliminating what the facts give, left − right = {}",
             plain(target)
         )];
         if root_missing {
             notes.extend(powers);
-        } else {
+        } else if !explained {
             notes.push(format!(
                 "a fact about {} was needed but never given (or `by [..]` left it out)",
                 names(stuck)
             ));
         }
         if let Some(hint) = crate::decide::diagnose(ra, rb, target)
-            .filter(|h| !root_missing && !h.starts_with("the two sides differ by"))
+            .filter(|h| !root_missing && !explained && h.mistake != Mistake::Difference)
         {
-            notes.push(format!("if {} can take any value, {hint}", names(stuck)));
+            notes.push(format!(
+                "if {} can take any value, {}",
+                names(stuck),
+                hint.text
+            ));
         }
         (d, notes)
     }

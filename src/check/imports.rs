@@ -5,6 +5,7 @@ use super::entry::Exports;
 use super::signs::{respects_sign, sign_of};
 use super::solve::Fact;
 use super::walk::{Checker, Known};
+use crate::diag::Code;
 use crate::lower::{Condition, Need};
 use crate::normal::atom::{self, AtomId};
 use crate::normal::print::plain;
@@ -29,7 +30,7 @@ impl Checker<'_, '_> {
         let exports = match self.loader.import(&self.name.clone(), path) {
             Ok(e) => e,
             Err(m) => {
-                self.error("E0206", m, path_span, "");
+                self.error(Code::ImportFailed, m, path_span, "");
                 return self.import_failed(labels);
             }
         };
@@ -59,7 +60,7 @@ impl Checker<'_, '_> {
                         "not found, or not verified there".to_string(),
                     ),
                 };
-                self.error("E0206", why, l.span, &hint);
+                self.error(Code::ImportFailed, why, l.span, &hint);
                 self.import_failed(std::slice::from_ref(l));
                 if exports.lets.contains_key(&l.name) && !self.scope.is_declared(&l.name) {
                     let line = self.line(l.span);
@@ -104,7 +105,7 @@ impl Checker<'_, '_> {
             let base = name.trim_end_matches('\'');
             if from.exports.unknowns.iter().any(|u| u == name || u == base) {
                 self.error(
-                    "E0208",
+                    Code::BadWith,
                     format!("`with` cannot set `{name}`: it is an unknown of \"{path}\""),
                     a.name.span,
                     "only parameters can be instantiated",
@@ -113,7 +114,7 @@ impl Checker<'_, '_> {
             }
             let Some(declared) = from.exports.signs.get(name).copied() else {
                 self.error(
-                    "E0208",
+                    Code::BadWith,
                     format!("`with` sets `{name}`, which is not a symbol of \"{path}\""),
                     a.name.span,
                     "only the symbols declared there can be instantiated",
@@ -122,7 +123,12 @@ impl Checker<'_, '_> {
             };
             let v = self.lower(&a.value, &mut Vec::new())?;
             if let Err(m) = respects_sign(name, declared, &v, &self.env.signs) {
-                self.error("E0208", format!("{m} (in \"{path}\")"), a.value.span, "");
+                self.error(
+                    Code::BadWith,
+                    format!("{m} (in \"{path}\")"),
+                    a.value.span,
+                    "",
+                );
                 return None;
             }
             if let Some(unit) = from.exports.units.get(name) {
@@ -158,7 +164,7 @@ impl Checker<'_, '_> {
         let v = match inst(eq) {
             Ok(r) => r,
             Err(e) => {
-                self.error("E0101", e.to_string(), l.span, "");
+                self.error(Code::NoValue, e.to_string(), l.span, "");
                 return None;
             }
         };
@@ -175,7 +181,7 @@ impl Checker<'_, '_> {
             };
             if fails {
                 self.error(
-                    "E0305",
+                    Code::DivisionByZero,
                     format!(
                         "[{}] from \"{path}\" holds only where {} {what}, which is false here",
                         l.name,
@@ -194,7 +200,7 @@ impl Checker<'_, '_> {
             && sign_of(&v, &self.env.signs).is_nonzero()
         {
             self.error(
-                "E0306",
+                Code::FalseFacts,
                 format!(
                     "[{}] from \"{path}\", instantiated here, is false: {} = 0",
                     l.name,
@@ -232,7 +238,7 @@ impl Checker<'_, '_> {
             };
             if !implied {
                 self.error(
-                    "E0208",
+                    Code::BadWith,
                     format!(
                         "[{}] from \"{}\" holds when `{name}` has the sign declared there, which this file does not declare",
                         l.name, from.path

@@ -4,6 +4,7 @@
 //! line, so rigor says how it read the expression (warning W0101) and how to write
 //! the other reading.
 
+use crate::diag::Code;
 use crate::diag::{Diagnostic, Severity};
 use crate::syntax::ast::{BinOp, BodyDef, Expr, ExprKind, Func, Reading, StmtKind};
 
@@ -161,7 +162,7 @@ fn glued(l: &Expr, r: &Expr, src: &str) -> Option<Diagnostic> {
     let c = src.get(r.span.start..r.span.end)?;
     let span = crate::syntax::ast::Span::new(den.span.start, r.span.end);
     let mut d = Diagnostic::error(
-        "W0101",
+        Code::Reading,
         format!("`{written}` is read as ({a}/{b}) {c}, with {c} above the line"),
         span,
         format!("if {b} {c} is the denominator, write `{a}/({b} {c})`"),

@@ -7,6 +7,7 @@ use super::signs::{describe, sign_of};
 use super::step::{LinkInput, Reduced};
 use super::walk::{unknown_atom, Checker};
 use crate::decide::{decide, find_counterexample, Verdict};
+use crate::diag::Code;
 use crate::diag::Diagnostic;
 use crate::interval::Prec;
 use crate::normal::atom::{self, AtomId};
@@ -27,7 +28,7 @@ impl Checker<'_, '_> {
     ) -> Result<Status, Diagnostic> {
         if red.target().is_zero() {
             return Err(Diagnostic::error(
-                "E0303",
+                Code::Inequality,
                 "the two sides are equal, so `!=` is false",
                 span,
                 "",
@@ -37,7 +38,7 @@ impl Checker<'_, '_> {
         let d = red
             .ra
             .sub(&red.rb)
-            .map_err(|e| Diagnostic::error("E0101", e.to_string(), span, ""))?;
+            .map_err(|e| Diagnostic::error(Code::NoValue, e.to_string(), span, ""))?;
         if sign_of(&d, signs).is_nonzero() {
             return Ok(Status::Verified {
                 how: Justification::Signs(red.via.clone()),
@@ -45,7 +46,7 @@ impl Checker<'_, '_> {
             });
         }
         let mut diag = Diagnostic::error(
-            "E0303",
+            Code::Inequality,
             "not verified: the declared signs do not show that the sides differ",
             span,
             "",
@@ -75,7 +76,7 @@ impl Checker<'_, '_> {
         let d = red
             .ra
             .sub(&red.rb)
-            .map_err(|e| Diagnostic::error("E0101", e.to_string(), span, ""))?;
+            .map_err(|e| Diagnostic::error(Code::NoValue, e.to_string(), span, ""))?;
         let sign = sign_of(&d, signs);
         let ok = match op {
             RelOp::Lt => sign == Sign::Neg,
@@ -90,7 +91,7 @@ impl Checker<'_, '_> {
             });
         }
         let mut diag = Diagnostic::error(
-            "E0303",
+            Code::Inequality,
             format!("not verified: `{op}` does not follow from the declared signs"),
             span,
             "",
@@ -229,7 +230,7 @@ impl Checker<'_, '_> {
         };
         let d = crate::normal::subst::Subst::new(&scaled, &self.env.signs)
             .rat(&target)
-            .map_err(|e| Diagnostic::error("E0101", e.to_string(), span, ""))?;
+            .map_err(|e| Diagnostic::error(Code::NoValue, e.to_string(), span, ""))?;
         let coeffs = crate::normal::series::series(&d, eps, order as usize, &self.env.signs)
             .map_err(|e| {
                 let why = match e {
@@ -237,7 +238,7 @@ impl Checker<'_, '_> {
                     crate::normal::series::SeriesError::Norm(n) => n.to_string(),
                 };
                 Diagnostic::error(
-                    "E0302",
+                    Code::NotVerified,
                     format!("`~=` is not verified: rigor cannot expand {why} in powers of the small quantities"),
                     span,
                     "undecided",
@@ -252,7 +253,7 @@ impl Checker<'_, '_> {
             format!("at order {k} in {}", of.join(", "))
         };
         Err(Diagnostic::error(
-            "E0304",
+            Code::Approximation,
             format!("`~=` does not hold to the order kept: the sides differ {what}"),
             span,
             "not equal to this order",
@@ -274,10 +275,10 @@ impl Checker<'_, '_> {
         conditions: Vec<String>,
     ) -> Result<Status, Diagnostic> {
         let (c, ulp) = literal_precision(rhs, &self.report.source)
-            .map_err(|why| Diagnostic::error("E0304", why, span, ""))?;
+            .map_err(|why| Diagnostic::error(Code::Approximation, why, span, ""))?;
         let Ok(ratio) = a.div(b) else {
             return Err(Diagnostic::error(
-                "E0304",
+                Code::Approximation,
                 "the right side of `~=` is zero",
                 span,
                 "",
@@ -289,7 +290,7 @@ impl Checker<'_, '_> {
         crate::decide::symbols_in(&ratio, &mut sy);
         if !sy.is_empty() {
             return Err(Diagnostic::error(
-                "E0304",
+                Code::Approximation,
                 format!(
                     "`~=` is not verified: the ratio of the sides, {}, is not a number",
                     plain(&ratio)
@@ -319,7 +320,7 @@ impl Checker<'_, '_> {
             }),
             Some(false) => {
                 Err(Diagnostic::error(
-                    "E0304",
+                    Code::Approximation,
                     format!(
                         "`~=` does not hold at the precision written: the exact ratio is {}",
                         plain(&ratio)
@@ -340,7 +341,7 @@ impl Checker<'_, '_> {
                 ))
             }
             _ => Err(Diagnostic::error(
-                "E0302",
+                Code::NotVerified,
                 "`~=` is not verified: rigor could not bound the ratio precisely enough",
                 span,
                 "undecided",

@@ -102,6 +102,9 @@ pub struct LinkReport {
     pub status: Status,
     /// The unit of both sides, when the file declares units and they agree.
     pub units: Option<String>,
+    /// What the link got wrong, when it failed or is not verified and the checker
+    /// found the kind of mistake (as on its diagnostic).
+    pub mistake: Option<crate::diag::Mistake>,
 }
 
 /// The work behind a link verified with the facts, kept for worked solutions that fill

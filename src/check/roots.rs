@@ -14,6 +14,7 @@
 //! Nothing is verified this way: a step that failed stays not verified.
 
 use super::report::{FileReport, Status};
+use crate::diag::Code;
 use crate::diag::{Diagnostic, Severity};
 use crate::syntax::ast::{BodyDef, Expr, ExprKind, File, Item, Span, StmtKind};
 
@@ -87,7 +88,7 @@ pub(super) fn one_mistake(
                 }
             }
             let mut d = Diagnostic::error(
-                "N0206",
+                Code::Consequence,
                 format!(
                     "not counted as a second mistake: this step holds with {}, so it fails because of the mistake reported at line {first_line}",
                     change.what

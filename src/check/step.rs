@@ -7,6 +7,7 @@ use super::report::{Justification, Status};
 use super::solve::{apply_steps, contradiction, eliminate, Elimination, Fact};
 use super::walk::{unknown_atom, Checker, Known};
 use crate::clock::Deadline;
+use crate::diag::Code;
 use crate::diag::Diagnostic;
 use crate::lower::{Condition, Need};
 use crate::normal::atom::AtomId;
@@ -100,7 +101,7 @@ impl Reduced {
 }
 
 fn e0101(span: Span) -> impl Fn(crate::normal::NormError) -> Diagnostic {
-    move |e| Diagnostic::error("E0101", e.to_string(), span, "")
+    move |e| Diagnostic::error(Code::NoValue, e.to_string(), span, "")
 }
 
 impl Checker<'_, '_> {
@@ -126,7 +127,7 @@ impl Checker<'_, '_> {
             (Ok(a), Ok(b)) => (a, b),
             (Err(e), _) | (_, Err(e)) => {
                 return Err(Diagnostic::error(
-                    "E0101",
+                    Code::NoValue,
                     format!("the `where` substitution fails: {e}"),
                     span,
                     "",
@@ -158,7 +159,7 @@ impl Checker<'_, '_> {
         let (conditions, all_divs) = self.side_conditions(input, &red)?;
         if let Some(c) = red.elim.as_ref().and_then(|e| e.contradiction.as_ref()) {
             return Err(Diagnostic::error(
-                "E0306",
+                Code::FalseFacts,
                 format!("the facts in scope contradict each other: after eliminating unknowns, {c} says a nonzero quantity is zero"),
                 span,
                 "checked against contradictory facts",
@@ -217,12 +218,12 @@ impl Checker<'_, '_> {
             let e = eliminate(&diff, &used, &is_unknown, signs, input.deadline);
             Some(e.map_err(|e| match e {
                 crate::normal::NormError::DivisionByZero => Diagnostic::error(
-                    "E0305",
+                    Code::DivisionByZero,
                     "under the facts, this step divides by zero",
                     span,
                     "a denominator here is zero once the facts are used",
                 ),
-                e => Diagnostic::error("E0901", e.to_string(), span, ""),
+                e => Diagnostic::error(Code::SizeLimit, e.to_string(), span, ""),
             })?)
         };
         let steps = elim.as_ref().map_or(&[][..], |e| &e.steps[..]);
@@ -269,7 +270,7 @@ impl Checker<'_, '_> {
         match contradiction(&red.used, &self.env.signs) {
             None => Ok(()),
             Some(c) => Err(Diagnostic::error(
-                "E0306",
+                Code::FalseFacts,
                 format!("the facts in scope contradict each other: {c}"),
                 span,
                 "checked against contradictory facts",

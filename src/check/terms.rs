@@ -5,6 +5,8 @@
 use super::solve::{apply_steps, Step};
 use super::step::LinkInput;
 use super::walk::Checker;
+use crate::decide::Diagnosis;
+use crate::diag::Mistake;
 use crate::lower::Lowerer;
 use crate::normal::atom;
 use crate::normal::{Rat, Q};
@@ -34,7 +36,7 @@ impl Checker<'_, '_> {
         input: &LinkInput<'_>,
         d: &Rat,
         steps: &[Step],
-    ) -> Option<String> {
+    ) -> Option<Diagnosis> {
         if d.is_zero() {
             return None;
         }
@@ -46,7 +48,11 @@ impl Checker<'_, '_> {
         }
         let left = self.side_diagnosis(input, input.lhs_expr, 1, d, steps);
         match (right, left) {
-            (Some(r), Some(l)) => Some(format!("{r} (or, on the left, {l})")),
+            // The right side's kind: it is what was just written.
+            (Some(r), Some(l)) => Some(Diagnosis {
+                text: format!("{} (or, on the left, {})", r.text, l.text),
+                ..r
+            }),
             (r, l) => r.or(l),
         }
     }
@@ -59,7 +65,7 @@ impl Checker<'_, '_> {
         sigma: i8,
         d: &Rat,
         steps: &[Step],
-    ) -> Option<String> {
+    ) -> Option<Diagnosis> {
         let mut ts = Vec::new();
         terms(side, 1, &mut ts);
         if ts.len() < 2 {
@@ -81,8 +87,8 @@ impl Checker<'_, '_> {
             match explain(d, &u, written) {
                 // A missing or extra term is said by the whole-side diagnosis, which names
                 // it in normal form.
-                Some(Why::Extra(_)) => {}
-                Some(w) => return Some(w.text()),
+                Some(Why::Extra) => {}
+                Some(Why::Other(mistake, text)) => return Some(Diagnosis::term(mistake, text)),
                 None => {}
             }
         }
@@ -99,18 +105,10 @@ impl Checker<'_, '_> {
 
 /// What one term explains.
 enum Why {
-    /// It should not be there.
-    Extra(String),
-    /// Any other single-term change.
-    Other(String),
-}
-
-impl Why {
-    fn text(self) -> String {
-        match self {
-            Why::Extra(s) | Why::Other(s) => s,
-        }
-    }
+    /// It should not be there (said by the whole-side diagnosis).
+    Extra,
+    /// Any other single-term change: its kind, and the sentence.
+    Other(Mistake, String),
 }
 
 /// How one term's contribution `u` (to left − right) explains the difference `d`.
@@ -119,25 +117,27 @@ fn explain(d: &Rat, u: &Rat, written: &str) -> Option<Why> {
     if let Some(c) = r.as_constant() {
         let two = Q::from_integer(2.into());
         if c == two {
-            return Some(Why::Other(format!(
-                "the term `{written}` has the wrong sign"
-            )));
+            return Some(Why::Other(
+                Mistake::Sign,
+                format!("the term `{written}` has the wrong sign"),
+            ));
         }
         let k = Q::one() - &c;
         if k.is_zero() {
-            return Some(Why::Extra(format!(
-                "the term `{written}` should not be there (an extra term?)"
-            )));
+            return Some(Why::Extra);
         }
         let factor = Q::one() / k;
         // A negative factor is a sign and a factor at once: not one slip.
         if factor < Q::zero() {
             return None;
         }
-        return Some(Why::Other(format!(
-            "the term `{written}` is {} × what it should be",
-            show(&factor)
-        )));
+        return Some(Why::Other(
+            Mistake::Factor,
+            format!(
+                "the term `{written}` is {} × what it should be",
+                show(&factor)
+            ),
+        ));
     }
     // 1 − r = x or 1/x: one power of a symbol too few or too many.
     let rest = Rat::one().sub(&r).ok()?;
@@ -150,14 +150,16 @@ fn explain(d: &Rat, u: &Rat, written: &str) -> Option<Why> {
         }
     };
     if let Some(x) = single(&rest) {
-        return Some(Why::Other(format!(
-            "the term `{written}` has one power of {x} too few"
-        )));
+        return Some(Why::Other(
+            Mistake::Power,
+            format!("the term `{written}` has one power of {x} too few"),
+        ));
     }
     if let Some(x) = Rat::one().div(&rest).ok().as_ref().and_then(single) {
-        return Some(Why::Other(format!(
-            "the term `{written}` has one power of {x} too many"
-        )));
+        return Some(Why::Other(
+            Mistake::Power,
+            format!("the term `{written}` has one power of {x} too many"),
+        ));
     }
     None
 }

@@ -8,6 +8,7 @@ use super::scope::{undeclared, Decl, Scope};
 use super::signs::sign_of;
 use super::solve::Fact;
 use crate::calculus::{self, Wrt};
+use crate::diag::Code;
 use crate::diag::{Diagnostic, Severity};
 use crate::lower::{build_body, sign_of_decl, Condition, Env, LowerError, Lowerer};
 use crate::normal::atom::{self, AtomId};
@@ -107,7 +108,7 @@ impl<'l, 'o> Checker<'l, 'o> {
         }
     }
 
-    pub(super) fn error(&mut self, code: &'static str, msg: String, span: Span, label: &str) {
+    pub(super) fn error(&mut self, code: Code, msg: String, span: Span, label: &str) {
         self.report.input_error = true;
         self.report
             .diagnostics
@@ -143,7 +144,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             if !self.labels.contains_key(&l.name) {
                 let hint = self.label_hint(&l.name);
                 self.error(
-                    "E0205",
+                    Code::UnknownLabel,
                     format!("`result` names [{}], which no statement has", l.name),
                     l.span,
                     &hint,
@@ -199,7 +200,12 @@ impl<'l, 'o> Checker<'l, 'o> {
                 continue;
             }
             let hint = self.scope.undeclared_hint(name);
-            self.error("E0201", format!("undeclared symbol `{name}`"), *span, &hint);
+            self.error(
+                Code::Undeclared,
+                format!("undeclared symbol `{name}`"),
+                *span,
+                &hint,
+            );
             let line = self.line(*span);
             self.failed_names.insert(
                 name.clone(),
@@ -232,7 +238,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             self.timed_out = true;
             // Said as what it is (undecided), like the summary and the exit status.
             self.report.diagnostics.push(Diagnostic::error(
-                "E0902",
+                Code::TimeBudget,
                 "not verified: the claim ran out of its time budget (see --timeout)",
                 e.span,
                 "undecided",
@@ -240,9 +246,9 @@ impl<'l, 'o> Checker<'l, 'o> {
             return;
         }
         let code = if e.limit().is_some() {
-            "E0901"
+            Code::SizeLimit
         } else {
-            "E0101"
+            Code::NoValue
         };
         self.error(code, e.to_string(), e.span, "");
     }
@@ -252,7 +258,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             let ok = matches!((prev, &d), (Decl::Symbol, Decl::Unknown));
             if !ok {
                 self.error(
-                    "E0203",
+                    Code::DeclaredTwice,
                     format!("`{name}` is already declared"),
                     span,
                     "declared again here",
@@ -266,7 +272,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             && self.scope.names.get("t") == Some(&Decl::TimeVar)
         {
             self.error(
-                "E0203",
+                Code::DeclaredTwice,
                 "`t` is the time variable declared by `time`".into(),
                 span,
                 "",
@@ -282,7 +288,7 @@ impl<'l, 'o> Checker<'l, 'o> {
         if let Some(prev) = self.labels.get(&l.name).copied() {
             let line = self.line(prev);
             self.error(
-                "E0202",
+                Code::DuplicateLabel,
                 format!("duplicate label [{}]", l.name),
                 l.span,
                 &format!("[{}] was already used on line {line}", l.name),
@@ -362,7 +368,7 @@ impl<'l, 'o> Checker<'l, 'o> {
                             |s| format!("did you mean `{s}`?"),
                         );
                         self.error(
-                            "E0201",
+                            Code::Undeclared,
                             format!("units for undeclared symbol `{}`", d.name.name),
                             d.name.span,
                             &hint,
@@ -459,7 +465,7 @@ impl<'l, 'o> Checker<'l, 'o> {
         };
         if matches!(sign_of(&mass, &self.env.signs), Sign::Neg) {
             let mut d = Diagnostic::error(
-                "W0102",
+                Code::NegativeMass,
                 format!(
                     "the mass of `{}` comes out negative: {}",
                     name.name,
@@ -507,7 +513,7 @@ impl<'l, 'o> Checker<'l, 'o> {
         self.facts.truncate(before);
         self.report.diagnostics.push(
             Diagnostic::error(
-                "E0306",
+                Code::FalseFacts,
                 format!("the facts contradict each other: {why}"),
                 span,
                 "no real values satisfy the facts with this one",
@@ -540,7 +546,7 @@ impl<'l, 'o> Checker<'l, 'o> {
                 let value = match prev.sub(&rhs) {
                     Ok(v) => v,
                     Err(e) => {
-                        self.error("E0101", e.to_string(), link.span, "");
+                        self.error(Code::NoValue, e.to_string(), link.span, "");
                         return false;
                     }
                 };
@@ -552,7 +558,7 @@ impl<'l, 'o> Checker<'l, 'o> {
                     || super::zeros::never_zero(&value, &self.env.signs)
                 {
                     self.report.diagnostics.push(Diagnostic::error(
-                        "E0306",
+                        Code::FalseFacts,
                         format!(
                             "this fact is false under the declared signs: {} = {}",
                             plain(&prev),
@@ -614,7 +620,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             Ok(x) => x,
             Err(why) => {
                 self.error(
-                    "E0203",
+                    Code::DeclaredTwice,
                     why,
                     lo.0.span.to(hi.0.span),
                     "the lower bound must be below the upper bound",

@@ -1,5 +1,6 @@
 //! The commands behind `rigor`'s subcommands; each returns the exit status.
 
+use rigor::diag::Code;
 // Output that ignores a closed pipe (`rigor check | head` must not panic).
 macro_rules! out {
     ($($t:tt)*) => {{
@@ -38,7 +39,7 @@ use std::path::Path;
 
 fn report_syntax(e: &SyntaxError, what: &str, src: &str) {
     let d = Diagnostic::error(
-        "E0001",
+        Code::Syntax,
         format!("syntax error: {}", e.message),
         e.span,
         "here",
@@ -48,9 +49,9 @@ fn report_syntax(e: &SyntaxError, what: &str, src: &str) {
 
 fn report_lower(e: &LowerError, what: &str, src: &str) {
     let code = if e.limit().is_some() {
-        "E0901"
+        Code::SizeLimit
     } else {
-        "E0101"
+        Code::NoValue
     };
     let message = format!("{e}{}", e.limit().map_or("", flag_of));
     let d = Diagnostic::error(code, message, e.span, "");
@@ -67,7 +68,7 @@ fn name_the_flags(reports: &mut [FileReport]) {
     for d in reports.iter_mut().flat_map(|r| r.diagnostics.iter_mut()) {
         if let Some((_, flag)) = refusals
             .iter()
-            .find(|(m, _)| d.code == "E0901" && d.message == *m)
+            .find(|(m, _)| d.code == Code::SizeLimit && d.message == *m)
         {
             d.message.push_str(flag);
         }
@@ -140,7 +141,7 @@ fn options_env(
                     )
                     .map_err(|why| {
                         let d = Diagnostic::error(
-                            "E0203",
+                            Code::DeclaredTwice,
                             why,
                             lo.span.to(hi.span),
                             "the lower bound must be below the upper bound",

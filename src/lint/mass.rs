@@ -14,6 +14,7 @@
 
 use super::{free, ChainReport, Checked, Verdict};
 use crate::check::Options;
+use crate::diag::Code;
 use crate::diag::Diagnostic;
 use crate::syntax::ast::{BinOp, Chain, Expr, ExprKind, Func, Span};
 use crate::syntax::print::source;
@@ -186,7 +187,7 @@ pub(super) fn over_prose_mass(
 
 fn needs_body(span: Span) -> Diagnostic {
     Diagnostic::error(
-        "E0302",
+        Code::NotVerified,
         "needs context: it integrates over dm, a mass element the notes define in prose; \
          declare the body in a `rigor: body …` comment to have it checked",
         span,

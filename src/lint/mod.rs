@@ -4,6 +4,7 @@
 //! document: its symbols declared as reals (or as the document's `rigor:` comments
 //! say), a chain whose left side is a lone new symbol defining it for later chains.
 
+use crate::diag::{Code, Mistake};
 mod extract;
 mod mass;
 
@@ -253,7 +254,10 @@ impl Scope {
             let more: Vec<String> = checked
                 .diagnostics
                 .iter()
-                .filter_map(|d| d.primary.as_ref().and_then(|(_, hint)| determined(hint)))
+                .filter_map(|d| match &d.mistake {
+                    Some(Mistake::DeclaredGiven(name)) => Some(name.clone()),
+                    _ => None,
+                })
                 .filter(|n| !b.known.contains(n) && !solve.contains(n))
                 .collect();
             if more.is_empty() || round == 2 {
@@ -279,14 +283,6 @@ impl Scope {
             solve.extend(more);
         }
     }
-}
-
-/// The name the checker found the facts determine, from its hint "with `unknowns F`
-/// this step follows".
-fn determined(hint: &str) -> Option<String> {
-    let rest = hint.strip_prefix("with `unknowns ")?;
-    let name = rest.strip_suffix("` this step follows")?;
-    Some(name.to_string())
 }
 
 /// A link after the first of a chain.
@@ -713,11 +709,19 @@ fn part_outcome(checked: &FileReport, part: &Part, whole: Span) -> (Vec<Status>,
     (statuses, diagnostics)
 }
 
+/// Whether `d` shows its relation false (or its units inconsistent), rather than not
+/// shown: in a chain whose first link states a relation, that is a mistake.
+fn refuted(d: &Diagnostic) -> bool {
+    matches!(
+        d.code,
+        Code::Refuted | Code::Inequality | Code::Approximation | Code::DivisionByZero | Code::Units
+    )
+}
+
 /// The verdict on a placed chain: its later links must follow (else it failed); its
 /// first link must hold on its own, or state a relation for a lone symbol.
 fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
     let holds = |s: &[Status]| !s.is_empty() && s.iter().all(Status::is_verified);
-    let refuted = ["E0301", "E0303", "E0304", "E0305", "E0401"];
     let (first_statuses, mut first_diags) = match &p.first {
         Some(part) => part_outcome(checked, part, p.span),
         None => (Vec::new(), Vec::new()),
@@ -727,7 +731,7 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
         .rest
         .as_ref()
         .map(|part| part_outcome(checked, part, p.span));
-    if p.firm && !p.states && first_diags.iter().any(|x| refuted.contains(&x.code)) {
+    if p.firm && !p.states && first_diags.iter().any(refuted) {
         return ChainReport {
             span: p.span,
             verdict: Verdict::Failed,
@@ -749,15 +753,14 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
         diagnostics,
     };
     if let Some((s, mut d)) = rest {
-        if d.iter().any(|x| refuted.contains(&x.code)) {
-            if d.iter()
-                .any(|x| refuted.contains(&x.code) && later_is_a_mistake(p, x))
-            {
+        if d.iter().any(refuted) {
+            if d.iter().any(|x| refuted(x) && later_is_a_mistake(p, x)) {
                 return report(Verdict::Failed, d);
             }
-            for x in d.iter_mut().filter(|x| refuted.contains(&x.code)) {
+            for x in d.iter_mut().filter(|x| refuted(x)) {
                 x.message = later_needs(p, x);
-                x.code = "E0302";
+                x.code = Code::NotVerified;
+                x.mistake = None;
             }
             first_diags.extend(d);
             return report(Verdict::NeedsContext, first_diags);
@@ -779,14 +782,15 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
     // What the first link needs is context, not a mistake: notes state relations that
     // hold by definitions and laws given in prose.
     for d in &mut first_diags {
-        if refuted.contains(&d.code) {
-            d.code = "E0302";
+        if refuted(d) {
+            d.code = Code::NotVerified;
+            d.mistake = None;
             d.message = "needs context: this relation does not hold for every value of its symbols; the document must define or give it".into();
         }
     }
     if first_diags.is_empty() {
         first_diags.push(Diagnostic::error(
-            "E0302",
+            Code::NotVerified,
             "needs context: this chain uses something the document defines elsewhere",
             p.span,
             "",
@@ -952,12 +956,12 @@ fn read(
     let unread = |span: Span, message: String| ChainReport {
         span,
         verdict: Verdict::NeedsContext,
-        diagnostics: vec![Diagnostic::error("E0001", message, span, "")],
+        diagnostics: vec![Diagnostic::error(Code::Syntax, message, span, "")],
         assuming: Vec::new(),
     };
     let after = e.span.end.saturating_sub(at);
     match extract::equals_after(rel, after) {
-        Some(eq) if e.message.contains("`dm` with limits") => {
+        Some(eq) if e.kind == crate::syntax::error::SyntaxErrorKind::MassElementWithLimits => {
             let mut out = vec![unread(Span::new(at, at + eq), e.message)];
             let (more, chain) = read(&rel[eq + 1..], at + eq + 1, None, popts);
             out.extend(more);

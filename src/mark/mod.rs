@@ -6,6 +6,7 @@
 
 use crate::check::{check_source, FileReport, Options, Resolver, Status};
 use crate::diag::{line_col, Diagnostic};
+use crate::diag::{Code, FailureKind, Mistake};
 use crate::syntax::ast::{Chain, Expr, ExprKind, Item, StmtKind};
 
 /// The kinds of first mistake (README, "rigor mark").
@@ -134,39 +135,29 @@ pub fn expected(reference: &FileReport) -> Vec<Expected> {
         .collect()
 }
 
-/// The kind of a failing step's diagnosis.
+/// The kind of a failing step's diagnosis, as the CSV names it: from its code and the
+/// mistake the checker found, never from its words.
 pub fn kind(d: &Diagnostic) -> &'static str {
-    let m = format!(
-        "{} {}",
-        d.message,
-        d.primary.as_ref().map_or("", |p| p.1.as_str())
-    );
-    match d.code {
-        "E0001" | "E0002" => return "syntax",
-        "E0201" => return "undeclared",
-        "E0401" | "E0402" | "E0403" => return "units",
+    match d.failure() {
+        Some(FailureKind::Units) => return "units",
         // A given that is false, facts that contradict each other: bad input in
         // `check` (E0306), never "could not decide".
-        "E0306" => return "false_fact",
+        Some(FailureKind::FalseFacts) => return "false_fact",
         _ => {}
     }
-    if m.contains("wrong sign") || m.contains("opposite signs") {
-        "sign"
-    } else if m.contains("power") {
-        "power"
-    } else if m.contains("× what it should be")
-        || m.contains("constant factor")
-        || m.contains("extra factor")
-    {
-        "factor"
-    } else if m.contains("nothing in scope determines") || m.contains("fact may be missing") {
-        "missing_fact"
-    } else if m.contains("extra term") || m.contains("should not be there") {
-        "extra_term"
-    } else if m.contains("missing") || m.contains("differ by") {
-        "missing_term"
-    } else {
-        "undecided"
+    match d.code {
+        Code::Syntax | Code::Unreadable => return "syntax",
+        Code::Undeclared => return "undeclared",
+        _ => {}
+    }
+    match d.mistake {
+        Some(Mistake::Sign) => "sign",
+        Some(Mistake::Power) => "power",
+        Some(Mistake::Factor) => "factor",
+        Some(Mistake::MissingFact) => "missing_fact",
+        Some(Mistake::ExtraTerm) => "extra_term",
+        Some(Mistake::MissingTerm | Mistake::Difference) => "missing_term",
+        Some(Mistake::ZeroSide | Mistake::DeclaredGiven(_)) | None => "undecided",
     }
 }
 
@@ -255,7 +246,7 @@ fn resting_on_false_facts(
     let false_fact = sub
         .diagnostics
         .iter()
-        .filter(|d| d.code == "E0306")
+        .filter(|d| d.failure() == Some(FailureKind::FalseFacts))
         .min_by_key(|d| d.primary.as_ref().map_or(0, |p| p.0.start))?;
     let chain = submission_chain(e, sub, mapping)?;
     let verified = sub
@@ -382,7 +373,7 @@ fn outcome_at(r: &FileReport, line: usize) -> Outcome {
                 .diagnostics
                 .iter()
                 .filter(inside)
-                .any(|d| d.code == "E0306") =>
+                .any(|d| d.failure() == Some(FailureKind::FalseFacts)) =>
         {
             Outcome::Wrong
         }

@@ -41,7 +41,7 @@ pub fn command_in(path: &str, idx: &LineIndex<'_>, d: &Diagnostic) -> String {
         props.push(format!("endLine={end_line}"));
         props.push(format!("endColumn={end_col}"));
     }
-    props.push(format!("title={}", escape_property(d.code)));
+    props.push(format!("title={}", escape_property(d.code.as_str())));
     let mut message = d.message.clone();
     // The words under the caret are the hint ("the left side is 2 × the right side",
     // "a sign error?"): an annotation has no caret, so they follow the headline.

@@ -100,7 +100,7 @@ fn justification(how: &Justification) -> Value {
 fn diagnostic(idx: &LineIndex<'_>, d: &Diagnostic) -> Value {
     let mut obj = serde_json::Map::new();
     obj.insert("severity".into(), json!(d.severity.as_str()));
-    obj.insert("code".into(), json!(d.code));
+    obj.insert("code".into(), json!(d.code.as_str()));
     obj.insert("message".into(), json!(d.message));
     position(idx, d.primary.as_ref().map(|(s, _)| *s), &mut obj);
     obj.insert("label".into(), json!(d.primary.as_ref().map(|(_, l)| l)));

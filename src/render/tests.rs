@@ -5,6 +5,7 @@ use super::expr::{chain_latex, expr_latex, expr_latex_in, number_latex, Ctx};
 use super::text::{latex_text, markdown_text, mathjax_text};
 use super::{github, human, json, latex, markdown, Detail};
 use crate::check::report::{ClaimReport, FileReport, Justification, LinkReport, Status};
+use crate::diag::Code;
 use crate::diag::{Diagnostic, Severity};
 use crate::syntax::ast::{Item, Span, StmtKind};
 use crate::syntax::{parse_chain, parse_expr, parse_file, ParseOptions};
@@ -194,14 +195,20 @@ fn github_commands() {
         path: "dir/x,y.deriv".into(),
         source: src.into(),
         diagnostics: vec![
-            Diagnostic::error("E0301", "not equal: 100% wrong", Span::new(18, 21), "here")
-                .note("at a = 1"),
+            Diagnostic::error(
+                Code::Refuted,
+                "not equal: 100% wrong",
+                Span::new(18, 21),
+                "here",
+            )
+            .note("at a = 1"),
             Diagnostic {
                 severity: Severity::Warning,
-                code: "W0001",
+                code: Code::Reading,
                 message: "assuming a != 0".into(),
                 primary: None,
                 notes: vec![],
+                mistake: None,
             },
         ],
         ..Default::default()
@@ -209,7 +216,7 @@ fn github_commands() {
     assert_eq!(
         github::report(&r),
         "::error file=dir/x%2Cy.deriv,line=2,col=9,endLine=2,endColumn=12,title=E0301::not equal: 100%25 wrong%0Ahere%0Aat a = 1\n\
-         ::warning file=dir/x%2Cy.deriv,title=W0001::assuming a != 0\n"
+         ::warning file=dir/x%2Cy.deriv,title=W0101::assuming a != 0\n"
     );
 }
 
@@ -232,7 +239,7 @@ fn report_with(path: &str, src: &str, statuses: Vec<Status>) -> FileReport {
                     if !status.is_verified() {
                         diagnostics.push(
                             Diagnostic::error(
-                                "E0301",
+                                Code::Refuted,
                                 "the two sides differ by a factor {2} & 100%",
                                 link.span,
                                 "here",
@@ -247,6 +254,7 @@ fn report_with(path: &str, src: &str, statuses: Vec<Status>) -> FileReport {
                         rhs: None,
                         status,
                         units: None,
+                        mistake: None,
                     });
                 }
                 let line = crate::diag::line_col(src, stmt.span.start).0;
@@ -291,7 +299,7 @@ fn summary_line() {
         path: "b.deriv".into(),
         input_error: true,
         diagnostics: vec![Diagnostic::error(
-            "E0001",
+            Code::Syntax,
             "cannot read b.deriv",
             Span::new(0, 0),
             "",
@@ -460,7 +468,7 @@ fn unreadable_file_document_compiles() {
         source: "claim [x] a = = b\n".into(),
         input_error: true,
         diagnostics: vec![Diagnostic::error(
-            "E0101",
+            Code::NoValue,
             "expected an expression after `=` \\end{verbatim}",
             Span::new(14, 15),
             "here",

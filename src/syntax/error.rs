@@ -24,6 +24,9 @@ pub enum SyntaxErrorKind {
     /// An expression with more operations inside one another than the parser builds
     /// (however it is nested: `a + b + … + z` a thousand times over).
     TooLarge,
+    /// `\int … dm` with limits: a mass element defined in prose, not a coordinate (lint
+    /// acts on this kind, never on the message's words).
+    MassElementWithLimits,
     /// Any other error: the message says what was expected, or what was unexpected.
     Other,
 }
@@ -41,6 +44,12 @@ impl SyntaxError {
             kind,
             message: message.into(),
         }
+    }
+
+    /// The same error, of kind `kind`.
+    pub fn with_kind(mut self, kind: SyntaxErrorKind) -> SyntaxError {
+        self.kind = kind;
+        self
     }
 }
 

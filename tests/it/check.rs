@@ -166,7 +166,7 @@ fn fixtures_with_an_expectation_fail_with_that_code_on_that_line_and_only_there(
                 + 1
         });
         assert_eq!(
-            (first.code, at),
+            (first.code.as_str(), at),
             (code.as_str(), line),
             "{}: first error `{}`",
             path.display(),
@@ -203,7 +203,7 @@ fn mixed_scales_in_one_sum_are_a_warning_not_a_failure() {
         PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/check/pass/units_mixed_scales.deriv");
     let r = check_one(&path);
     assert!(r.ok());
-    let warnings: Vec<&str> = r.diagnostics.iter().map(|d| d.code).collect();
+    let warnings: Vec<&str> = r.diagnostics.iter().map(|d| d.code.as_str()).collect();
     assert_eq!(warnings, ["W0401", "W0401"]);
 }
 
@@ -217,12 +217,12 @@ fn errors_and_notes(name: &str) -> (Vec<&'static str>, usize, FileReport) {
         .diagnostics
         .iter()
         .filter(|d| d.severity == rigor::diag::Severity::Error)
-        .map(|d| d.code)
+        .map(|d| d.code.as_str())
         .collect();
     let notes = r
         .diagnostics
         .iter()
-        .filter(|d| d.code == "N0205" && d.severity == rigor::diag::Severity::Note)
+        .filter(|d| d.code.as_str() == "N0205" && d.severity == rigor::diag::Severity::Note)
         .count();
     (errors, notes, r)
 }
@@ -282,7 +282,7 @@ fn two_independent_mistakes_stay_two_errors_and_a_consequence_becomes_a_note() {
     let r = check(&format!("{base}claim [twice] 2 I_O = 2 m L^2/3\n"));
     assert_eq!(errors(&r), 1, "{:?}", r.diagnostics);
     assert!(
-        r.diagnostics.iter().any(|d| d.code == "N0206"),
+        r.diagnostics.iter().any(|d| d.code.as_str() == "N0206"),
         "{:?}",
         r.diagnostics
     );
@@ -292,5 +292,91 @@ fn two_independent_mistakes_stay_two_errors_and_a_consequence_becomes_a_note() {
         "{base}claim [slip] m L^2/12 + m L^2/4 = m L^2/6\n"
     ));
     assert_eq!(errors(&r), 2, "{:?}", r.diagnostics);
-    assert!(!r.diagnostics.iter().any(|d| d.code == "N0206"));
+    assert!(!r.diagnostics.iter().any(|d| d.code.as_str() == "N0206"));
+}
+
+/// The kind of mistake travels as data, from where the checker finds it: on the
+/// failing link, on its diagnostic, and into mark's gradebook kind. The words of the
+/// message play no part (a symbol named `power` or `missing` changes nothing).
+#[test]
+fn a_failed_link_carries_its_kind_of_mistake() {
+    use rigor::diag::Mistake;
+    let cases: &[(&str, Mistake, &str)] = &[
+        // A whole side with the wrong sign, and one term with it.
+        (
+            "symbols a b > 0\nclaim a - b = b - a\n",
+            Mistake::Sign,
+            "sign",
+        ),
+        (
+            "symbols a power > 0\nclaim a + power = a - power\n",
+            Mistake::Sign,
+            "sign",
+        ),
+        (
+            "symbols m L > 0\nclaim m L^2/6 = m L^2/12\n",
+            Mistake::Factor,
+            "factor",
+        ),
+        (
+            "symbols a b > 0\nclaim a + b = a + 2 b\n",
+            Mistake::Factor,
+            "factor",
+        ),
+        (
+            "symbols x y > 0\nclaim x^2 + y = x^2 + y^2\n",
+            Mistake::Power,
+            "power",
+        ),
+        (
+            "symbols m L > 0\nclaim m L^2 = m L^3\n",
+            Mistake::Power,
+            "power",
+        ),
+        (
+            "symbols m d missing > 0\nsymbols I_G\nclaim I_G = I_G + m d^2\n",
+            Mistake::MissingTerm,
+            "missing_term",
+        ),
+        (
+            "symbols m g > 0\nunknowns F\nclaim F = m g\n",
+            Mistake::MissingFact,
+            "missing_fact",
+        ),
+        (
+            "symbols m g R > 0\nsymbols 0 < beta < pi/2\nsymbols F\ntime x theta\n\
+             given [Fx] m x'' = m g sin(beta) - F\ngiven [MG] (m R^2/2) theta'' = F R\n\
+             constraint [noslip] x = R theta\n\
+             claim [acc] x'' = 2 g sin(beta)/3 by [Fx], [MG], [noslip]\n",
+            Mistake::DeclaredGiven("F".into()),
+            "undecided",
+        ),
+    ];
+    for (src, mistake, kind) in cases {
+        let r = rigor::check_source(
+            "k.deriv",
+            src,
+            &crate::no_budget(),
+            &rigor::MemoryResolver::new(),
+        );
+        let link = r
+            .claims
+            .iter()
+            .flat_map(|c| &c.links)
+            .find(|l| !l.status.is_verified())
+            .unwrap_or_else(|| panic!("{src}: every link verified"));
+        assert_eq!(
+            link.mistake.as_ref(),
+            Some(mistake),
+            "{src}: {:?}",
+            r.diagnostics
+        );
+        let d = r
+            .diagnostics
+            .iter()
+            .find(|d| d.severity == rigor::diag::Severity::Error)
+            .unwrap_or_else(|| panic!("{src}: no error"));
+        assert_eq!(d.mistake.as_ref(), Some(mistake), "{src}: {d:?}");
+        assert_eq!(rigor::mark::kind(d), *kind, "{src}: {d:?}");
+    }
 }

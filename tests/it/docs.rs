@@ -156,7 +156,7 @@ fn run_deriv(b: &Block, files: &mut MemoryResolver) -> Result<(), String> {
             ));
         }
     } else {
-        let got: BTreeSet<&str> = report.diagnostics.iter().map(|d| d.code).collect();
+        let got: BTreeSet<&str> = report.diagnostics.iter().map(|d| d.code.as_str()).collect();
         let missing: Vec<&String> = emits.iter().filter(|c| !got.contains(c.as_str())).collect();
         if !missing.is_empty() {
             return Err(format!(

@@ -88,7 +88,9 @@ fn equiv_pairs() {
             }
             line.push_str(&format!(
                 "\n    {}",
-                diagnosis.as_deref().unwrap_or("(no diagnosis)")
+                diagnosis
+                    .as_ref()
+                    .map_or("(no diagnosis)", |d| d.text.as_str())
             ));
             if *exact {
                 line.push_str(&format!(
@@ -167,7 +169,9 @@ fn sign_slip_diagnosis() {
     let Verdict::NotEqual { diagnosis, .. } = decide(&a, &b, &Default::default()) else {
         panic!("not equal expected")
     };
-    assert!(diagnosis.unwrap().contains("opposite signs"));
+    let d = diagnosis.unwrap();
+    assert_eq!(d.mistake, rigor::diag::Mistake::Sign);
+    assert!(d.text.contains("opposite signs"));
 }
 
 #[test]
@@ -181,7 +185,9 @@ fn factor_of_two_diagnosis() {
         panic!("not equal expected")
     };
     assert!(exact);
-    assert!(diagnosis.unwrap().contains("2 × the right side"));
+    let d = diagnosis.unwrap();
+    assert_eq!(d.mistake, rigor::diag::Mistake::Factor);
+    assert!(d.text.contains("2 × the right side"));
 }
 
 #[test]

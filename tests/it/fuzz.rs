@@ -742,7 +742,8 @@ fn check_and_validate(g: &GenFile, pt: &[f64]) -> Result<(), TestCaseError> {
         for (i, link) in c.links.iter().enumerate() {
             if link.status == Status::Undecided {
                 let withdrawn = report.diagnostics.iter().any(|d| {
-                    d.code == "E0903" && d.primary.as_ref().is_some_and(|p| p.0 == link.span)
+                    d.code.as_str() == "E0903"
+                        && d.primary.as_ref().is_some_and(|p| p.0 == link.span)
                 });
                 prop_assert!(
                     !withdrawn,

@@ -34,7 +34,7 @@ fn a_forced_wrong_normal_form_is_caught_and_made_undecided() {
     assert_eq!(statuses[0], &Status::Undecided, "{:?}", r.diagnostics);
     assert!(statuses[1].is_verified());
     assert_eq!(statuses[2], &Status::Undecided);
-    let codes: Vec<&str> = r.diagnostics.iter().map(|d| d.code).collect();
+    let codes: Vec<&str> = r.diagnostics.iter().map(|d| d.code.as_str()).collect();
     assert_eq!(codes, ["E0903", "E0903"]);
     assert!(
         r.diagnostics[0].notes[0].contains("the left side is ≈ "),
@@ -114,6 +114,9 @@ fn with_a_broken_engine_the_soundness_fixtures_are_caught() {
             .join(format!("tests/check/fail/{name}.deriv"));
         let r = &check_paths(&[path], &corrupt())[0];
         assert!(undecided(r) > 0, "{name}: {:?}", r.claims);
-        assert!(r.diagnostics.iter().any(|d| d.code == "E0903"), "{name}");
+        assert!(
+            r.diagnostics.iter().any(|d| d.code.as_str() == "E0903"),
+            "{name}"
+        );
     }
 }

@@ -55,7 +55,7 @@ fn a_missing_import_is_an_error_at_the_path() {
     let r = check_source("main.deriv", MAIN, &crate::no_budget(), &files);
     assert!(r.input_error);
     let d = &r.diagnostics[0];
-    assert_eq!(d.code, "E0206");
+    assert_eq!(d.code.as_str(), "E0206");
     assert!(
         d.message.contains("cannot read \"lib/rod.deriv\""),
         "{}",
@@ -234,7 +234,9 @@ fn a_forgotten_mass_times_squared_distance_is_named_where_inertia_is_concerned()
         };
         let (a, b) = (lower(a), lower(b));
         let d = a.sub(&b).unwrap();
-        rigor::decide::diagnose(&a, &b, &d).unwrap_or_default()
+        let d = rigor::decide::diagnose(&a, &b, &d).expect("a diagnosis");
+        assert_eq!(d.mistake, rigor::diag::Mistake::MissingTerm);
+        d.text
     };
     assert_eq!(
         hint("I_G", "I_G + m d^2"),

@@ -179,7 +179,7 @@ fn report(src: &str) -> rigor::check::FileReport {
 fn codes(r: &rigor::check::FileReport, code: &str) -> Vec<usize> {
     r.diagnostics
         .iter()
-        .filter(|d| d.code == code)
+        .filter(|d| d.code.as_str() == code)
         .filter_map(|d| d.primary.as_ref())
         .map(|(span, _)| {
             r.source[..span.start.min(r.source.len())]
@@ -370,7 +370,7 @@ proptest! {
     fn claims_about_the_motion_at_an_instant_are_judged_right((src, holds) in motion_case()) {
         let r = check_source("m.deriv", &src, &crate::no_budget(), &MemoryResolver::new());
         let link = &r.claims[0].links[0];
-        let refuted = r.diagnostics.iter().any(|d| d.code == "E0301");
+        let refuted = r.diagnostics.iter().any(|d| d.code.as_str() == "E0301");
         if link.status.is_verified() {
             prop_assert!(holds, "verified but false:\n{src}");
         }

@@ -792,7 +792,8 @@ impl P {
                     return Err(SyntaxError::new(
                         vspan,
                         "needs context: `dm` with limits is a mass element defined in prose; write it in terms of a coordinate (dm = m/L dy)",
-                    ));
+                    )
+                    .with_kind(crate::syntax::error::SyntaxErrorKind::MassElementWithLimits));
                 }
                 let v = node(ExprKind::Sym(var), vspan);
                 Ok(node(ExprKind::Call(Func::Int, vec![f, v, lo, hi]), whole))

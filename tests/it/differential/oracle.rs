@@ -181,8 +181,8 @@ fn verdict(text: &str) -> Verdict {
     let code = r
         .diagnostics
         .iter()
-        .find(|d| d.code.starts_with('E'))
-        .map_or("", |d| d.code)
+        .find(|d| d.code.as_str().starts_with('E'))
+        .map_or("", |d| d.code.as_str())
         .to_string();
     match r
         .claims
