@@ -287,7 +287,7 @@ fn options_limits_below_the_default_refuse_a_large_expansion_saying_the_limit() 
     let d = r
         .diagnostics
         .iter()
-        .find(|d| d.code == "E0901")
+        .find(|d| d.code == rigor::diag::Code::SizeLimit)
         .unwrap_or_else(|| panic!("{:?}", r.diagnostics));
     assert_eq!(
         d.message,
