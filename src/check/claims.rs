@@ -64,6 +64,18 @@ impl Checker<'_, '_> {
         self.claim_inner(label, chain, where_, claim, deadline);
     }
 
+    /// The units of each expression of a chain (`None` when units are not in use).
+    fn chain_dims(
+        &mut self,
+        chain: &Chain,
+        span: Span,
+    ) -> Option<Vec<Result<crate::units::check::DimV, crate::units::check::UnitProblem>>> {
+        let exprs: Vec<&Expr> = std::iter::once(&chain.first)
+            .chain(chain.links.iter().map(|l| &l.rhs))
+            .collect();
+        self.dims(&exprs, span)
+    }
+
     fn claim_inner(
         &mut self,
         label: Option<String>,
@@ -80,10 +92,7 @@ impl Checker<'_, '_> {
             return self.push_error_claim(claim, chain);
         };
         // Units first: a link whose sides disagree in units fails before any algebra.
-        let exprs: Vec<&Expr> = std::iter::once(&chain.first)
-            .chain(chain.links.iter().map(|l| &l.rhs))
-            .collect();
-        let dims = self.dims(&exprs, span);
+        let dims = self.chain_dims(chain, span);
         let mut divs = Vec::new();
         let Some(first) = self.lower(&chain.first, &mut divs) else {
             return self.push_error_claim(claim, chain);

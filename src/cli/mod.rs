@@ -91,6 +91,37 @@ pub fn flag_of(l: rigor::normal::Limit) -> &'static str {
 /// guard's (the declarations and bodies as written).
 type OptionsEnv = (Env, rigor::guard::GuardEnv);
 
+/// A name assumed twice, or a bound that uses a name assumed in the same or a later
+/// `--assume`, could describe an empty region (`0 < a < b`, `0 < b < a`): refused.
+/// `declared[k]` and `bounds[k]` are the names the k-th `--assume` declares and uses.
+fn assumed_in_order(
+    assume: &[String],
+    declared: &[Vec<String>],
+    bounds: &[Vec<String>],
+) -> Result<(), ()> {
+    for (k, names) in declared.iter().enumerate() {
+        for n in names {
+            let again = declared[k + 1..].iter().any(|l| l.contains(n))
+                || names.iter().filter(|m| *m == n).count() > 1;
+            if again {
+                errln!(
+                    "error: `{n}` is assumed twice (in --assume \"{}\")",
+                    assume[k]
+                );
+                return Err(());
+            }
+            if let Some(j) = (0..=k).find(|&j| bounds[j].contains(n)) {
+                errln!(
+                    "error: the bounds in --assume \"{}\" use `{n}`, which is assumed in the same or a later --assume: assume `{n}` first",
+                    assume[j]
+                );
+                return Err(());
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Builds the environment of `--assume` and `--body` options. An `--assume` means what
 /// the same text means after `symbols` in a file: signs (`R > 0`) and intervals
 /// (`0 < beta < pi/2`, whose bounds may use only symbols no later `--assume` declares).
@@ -174,28 +205,7 @@ fn options_env(
         declared.push(names_here);
         bounds.push(used_here);
     }
-    // A name assumed twice, or a bound that uses a name assumed in the same or a later
-    // `--assume`, could describe an empty region (`0 < a < b`, `0 < b < a`): refused.
-    for (k, names) in declared.iter().enumerate() {
-        for n in names {
-            let again = declared[k + 1..].iter().any(|l| l.contains(n))
-                || names.iter().filter(|m| *m == n).count() > 1;
-            if again {
-                errln!(
-                    "error: `{n}` is assumed twice (in --assume \"{}\")",
-                    assume[k]
-                );
-                return Err(());
-            }
-            if let Some(j) = (0..=k).find(|&j| bounds[j].contains(n)) {
-                errln!(
-                    "error: the bounds in --assume \"{}\" use `{n}`, which is assumed in the same or a later --assume: assume `{n}` first",
-                    assume[j]
-                );
-                return Err(());
-            }
-        }
-    }
+    assumed_in_order(assume, &declared, &bounds)?;
     for b in bodies {
         let src = format!("body {b}");
         let file = match parse_file(&src, opts) {
