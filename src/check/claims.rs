@@ -64,18 +64,6 @@ impl Checker<'_, '_> {
         self.claim_inner(label, chain, where_, claim, deadline);
     }
 
-    /// The units of each expression of a chain (`None` when units are not in use).
-    fn chain_dims(
-        &mut self,
-        chain: &Chain,
-        span: Span,
-    ) -> Option<Vec<Result<crate::units::check::DimV, crate::units::check::UnitProblem>>> {
-        let exprs: Vec<&Expr> = std::iter::once(&chain.first)
-            .chain(chain.links.iter().map(|l| &l.rhs))
-            .collect();
-        self.dims(&exprs, span)
-    }
-
     fn claim_inner(
         &mut self,
         label: Option<String>,
@@ -477,7 +465,7 @@ impl Checker<'_, '_> {
             return None;
         }
         let all = |_: &str| None;
-        let exprs = std::iter::once(&chain.first).chain(chain.links.iter().map(|l| &l.rhs));
+        let exprs = chain.exprs();
         let mut names: Vec<(usize, String, String)> = exprs
             .flat_map(|e| super::scope::undeclared(e, &self.scope, &all))
             .filter_map(|(n, _)| {

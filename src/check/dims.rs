@@ -132,13 +132,20 @@ impl Checker<'_, '_> {
         }
     }
 
+    /// The units of each expression of a chain (`None` when units are not in use).
+    pub(super) fn chain_dims(
+        &mut self,
+        chain: &Chain,
+        span: Span,
+    ) -> Option<Vec<Result<DimV, UnitProblem>>> {
+        let exprs: Vec<&Expr> = chain.exprs().collect();
+        self.dims(&exprs, span)
+    }
+
     /// A given or constraint must be consistent in units; an inconsistent fact is bad
     /// input.
     pub(super) fn fact_units(&mut self, chain: &Chain, span: Span) {
-        let exprs: Vec<&Expr> = std::iter::once(&chain.first)
-            .chain(chain.links.iter().map(|l| &l.rhs))
-            .collect();
-        let Some(dims) = self.dims(&exprs, span) else {
+        let Some(dims) = self.chain_dims(chain, span) else {
             return;
         };
         for (i, link) in chain.links.iter().enumerate() {

@@ -11,9 +11,7 @@ use crate::syntax::ast::{BinOp, BodyDef, Expr, ExprKind, Func, Reading, StmtKind
 /// Every expression written in a statement.
 pub(super) fn exprs_of(kind: &StmtKind) -> Vec<&Expr> {
     fn chain(c: &crate::syntax::ast::Chain) -> Vec<&Expr> {
-        std::iter::once(&c.first)
-            .chain(c.links.iter().map(|l| &l.rhs))
-            .collect()
+        c.exprs().collect()
     }
     match kind {
         StmtKind::Range { lo, hi, .. } => vec![lo, hi],

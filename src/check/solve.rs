@@ -650,27 +650,9 @@ fn contradiction_in(facts: &[Fact], signs: &Assumptions, rounds: u32) -> Option<
         if let Some(f) = fs.iter().find(|f| nonzero(&f.value)) {
             return Some(says_zero(&f.name));
         }
-        let mut pick = None;
-        'outer: for (i, f) in fs.iter().enumerate() {
-            let mut atoms = f.value.num().atoms();
-            atoms.sort_by(|a, b| atom::cmp_atoms(*a, *b));
-            for u in atoms {
-                if atom::is_pi(u) {
-                    continue;
-                }
-                // Only a solution without a divisor: set up first, divide only then.
-                let Ok(Some(s)) = setup(&f.value, u, signs) else {
-                    continue;
-                };
-                if s.divisor.is_none() {
-                    if let Ok(sol) = finish(&s, signs) {
-                        pick = Some((i, u, sol.value));
-                        break 'outer;
-                    }
-                }
-            }
-        }
-        let Some((i, u, value)) = pick else {
+        // Only a solution without a divisor.
+        let Some((i, u, value)) = first_solvable(&fs, signs, &|_| false, &|_, divides| !divides)
+        else {
             break;
         };
         let fact = fs.remove(i);
@@ -726,6 +708,41 @@ fn contradiction_in(facts: &[Fact], signs: &Assumptions, rounds: u32) -> Option<
     contradiction_in(&fs, signs, rounds - 1)
 }
 
+/// The first fact, and in it the first atom (those `prefer` picks first, then in the
+/// atoms' order; never π), that the fact solves for as `allowed` says (`allowed(u,
+/// divides)`: whether solving for `u` may divide by something the signs do not show
+/// nonzero): the fact's index, the atom and its value.
+fn first_solvable(
+    fs: &[Fact],
+    signs: &Assumptions,
+    prefer: &dyn Fn(AtomId) -> bool,
+    allowed: &dyn Fn(AtomId, bool) -> bool,
+) -> Option<(usize, AtomId, Rat)> {
+    for (i, f) in fs.iter().enumerate() {
+        let mut atoms = f.value.num().atoms();
+        atoms.sort_by(|a, b| {
+            prefer(*b)
+                .cmp(&prefer(*a))
+                .then_with(|| atom::cmp_atoms(*a, *b))
+        });
+        for u in atoms {
+            if atom::is_pi(u) {
+                continue;
+            }
+            // Set up first, divide only then.
+            let Ok(Some(s)) = setup(&f.value, u, signs) else {
+                continue;
+            };
+            if allowed(u, s.divisor.is_some()) {
+                if let Ok(sol) = finish(&s, signs) {
+                    return Some((i, u, sol.value));
+                }
+            }
+        }
+    }
+    None
+}
+
 /// The facts solved one after another (each value substituted into the facts after
 /// it), for the guard's points: an unknown with any divisor (the point decides whether
 /// it is zero there), a parameter only without one, so that a parameter a fact ties
@@ -740,30 +757,9 @@ pub fn solve_for_point(
     let mut fs: Vec<Fact> = facts.to_vec();
     let mut steps = Vec::new();
     loop {
-        let mut pick = None;
-        'outer: for (i, f) in fs.iter().enumerate() {
-            let mut atoms = f.value.num().atoms();
-            atoms.sort_by(|a, b| {
-                is_unknown(*b)
-                    .cmp(&is_unknown(*a))
-                    .then_with(|| atom::cmp_atoms(*a, *b))
-            });
-            for u in atoms {
-                if atom::is_pi(u) || atom::sym_str(u).is_none() {
-                    continue;
-                }
-                let Ok(Some(s)) = setup(&f.value, u, signs) else {
-                    continue;
-                };
-                if s.divisor.is_none() || is_unknown(u) {
-                    if let Ok(sol) = finish(&s, signs) {
-                        pick = Some((i, u, sol.value));
-                        break 'outer;
-                    }
-                }
-            }
-        }
-        let Some((i, u, value)) = pick else {
+        let allowed =
+            |u: AtomId, divides: bool| atom::sym_str(u).is_some() && (!divides || is_unknown(u));
+        let Some((i, u, value)) = first_solvable(&fs, signs, is_unknown, &allowed) else {
             return (steps, fs);
         };
         let fact = fs.remove(i);

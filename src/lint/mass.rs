@@ -145,9 +145,7 @@ pub(super) fn over_prose_mass(
     chain: Chain,
     opts: (&Options, &Checked),
 ) -> (Vec<ChainReport>, Option<Chain>) {
-    let exprs: Vec<&Expr> = std::iter::once(&chain.first)
-        .chain(chain.links.iter().map(|l| &l.rhs))
-        .collect();
+    let exprs: Vec<&Expr> = chain.exprs().collect();
     let Some(k) = exprs.iter().rposition(|e| prose_mass(e)) else {
         return (Vec::new(), Some(chain));
     };

@@ -239,7 +239,7 @@ impl Scope {
                         .filter(|n| n.ends_with('\''))
                         .map(|n| n.trim_end_matches('\'').to_string()),
                 );
-                for e in std::iter::once(&c.first).chain(c.links.iter().map(|l| &l.rhs)) {
+                for e in c.exprs() {
                     changing(e, &mut time);
                 }
             }

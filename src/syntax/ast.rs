@@ -256,6 +256,13 @@ pub struct Chain {
     pub links: Vec<Link>,
 }
 
+impl Chain {
+    /// Its expressions in order: the first, then each link's right side.
+    pub fn exprs(&self) -> impl Iterator<Item = &Expr> {
+        std::iter::once(&self.first).chain(self.links.iter().map(|l| &l.rhs))
+    }
+}
+
 /// The sign declared for symbols in a `symbols` statement.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum SignDecl {
