@@ -41,5 +41,5 @@ mod zeros;
 
 pub(crate) use entry::normalise;
 pub use entry::{check_source, Exports, ImportError, MemoryResolver, Options, Resolver, Source};
-pub use report::{cite, ClaimReport, FileReport, Justification, LinkReport, Status};
+pub use report::{ClaimReport, FileReport, Justification, LinkReport, Status};
 pub use signs::interval;

@@ -56,9 +56,8 @@ impl Checker<'_, '_> {
             plain(&d)
         ));
         if let Verdict::NotEqual { .. } = decide(&red.ra, &red.rb, signs) {
-            diag.notes.push(
-                "the sides are not identical, but `!=` claims they differ for every allowed value"
-                    .into(),
+            diag.add_note(
+                "the sides are not identical, but `!=` claims they differ for every allowed value",
             );
         }
         Err(diag)
@@ -98,7 +97,7 @@ impl Checker<'_, '_> {
         )
         .note(format!("left − right = {}", plain(&d)));
         if let Some(e) = red.elim.as_ref().filter(|e| !e.stuck.is_empty()) {
-            diag.notes.push(format!(
+            diag.add_note(format!(
                 "the facts do not determine {}",
                 super::explain::names(&e.stuck)
             ));
@@ -112,10 +111,10 @@ impl Checker<'_, '_> {
         match violated {
             Some(c) => {
                 diag.message =
-                    format!("`{op}` is false for some values allowed by the declared signs");
-                diag.notes.push(c);
+                    format!("`{op}` is false for some values allowed by the declared signs").into();
+                diag.add_note(c);
             }
-            None => diag.notes.push(format!("its sign is {}", describe(sign))),
+            None => diag.add_note(format!("its sign is {}", describe(sign))),
         }
         Err(diag)
     }

@@ -58,20 +58,29 @@ fn report_lower(e: &LowerError, what: &str, src: &str) {
     err!("{}", diag::render(&d, what, src));
 }
 
-/// Adds the flag that sets it to each message that is exactly the library's refusal at
-/// one of this thread's size limits (the library says the limit, not the flag).
+/// Adds the flag that raises it to each refusal at one of rigor's limits (the library
+/// says the limit, not the flag).
 fn name_the_flags(reports: &mut [FileReport]) {
-    use rigor::normal::{limits, Limit, NormError};
-    let now = limits::current();
-    let refusals = [Limit::Terms(now.max_terms), Limit::Digits(now.max_digits)]
-        .map(|l| (NormError::Limit(l).to_string(), flag_of(l)));
+    use rigor::diag::Reached;
     for d in reports.iter_mut().flat_map(|r| r.diagnostics.iter_mut()) {
-        if let Some((_, flag)) = refusals
-            .iter()
-            .find(|(m, _)| d.code == Code::SizeLimit && d.message == *m)
-        {
-            d.message.push_str(flag);
-        }
+        let flag = match d.reached {
+            Some(Reached::Terms(_)) => " (see --max-terms)",
+            Some(Reached::Digits(_)) => " (see --max-digits)",
+            Some(Reached::ClaimTime) => " (see --timeout)",
+            Some(Reached::FileBudget) => " (see --budget)",
+            Some(Reached::FileSize(_)) => " (see --max-file-size)",
+            _ => continue,
+        };
+        d.message.push_str(flag);
+    }
+}
+
+/// Why a file could not be read, with the flag that raises the size limit when that is
+/// why.
+fn read_error(e: &rigor::files::ReadError) -> String {
+    match e {
+        rigor::files::ReadError::TooLarge { .. } => format!("{e} (see --max-file-size)"),
+        _ => e.to_string(),
     }
 }
 
@@ -643,7 +652,7 @@ pub fn lint(
                 &options,
             )),
             Err(e) => {
-                errln!("error: cannot read {name}: {e}");
+                errln!("error: cannot read {name}: {}", read_error(&e));
                 bad_input = true;
             }
         }
@@ -720,7 +729,7 @@ pub fn mark(
     let rows = rigor::files::parallel(&files, |(path, root)| {
         let name = path.display().to_string();
         match rigor::files::read(path, options.max_file_size) {
-            Err(e) => rigor::mark::unreadable(&name, e, &expected),
+            Err(e) => rigor::mark::unreadable(&name, read_error(&e), &expected),
             Ok(text) => {
                 let sub_resolver = FsResolver {
                     root: root.clone(),

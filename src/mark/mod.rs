@@ -230,7 +230,7 @@ fn first_failure(sub: &FileReport) -> Option<(usize, &'static str, String)> {
         .primary
         .as_ref()
         .map_or(0, |p| line_col(&sub.source, p.0.start).0);
-    Some((line, kind(d), d.message.clone()))
+    Some((line, kind(d), d.message.to_string()))
 }
 
 /// Where the submission's result for `e` rests on facts that are false or contradict
@@ -384,7 +384,7 @@ fn outcome_at(r: &FileReport, line: usize) -> Outcome {
             r.diagnostics
                 .iter()
                 .filter(inside)
-                .map(|d| d.message.clone())
+                .map(|d| d.message.to_string())
                 .next()
                 .unwrap_or_else(|| "it uses names the reference does not declare".into()),
         ),

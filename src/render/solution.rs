@@ -8,7 +8,7 @@ use super::expr::{chain_latex_in, expr_latex_in, rel_latex, symbol, Ctx};
 use super::steps::{Steps, Work};
 use super::Detail;
 use crate::check::report::{ClaimReport, FileReport, Status};
-use crate::diag::{line_col, Diagnostic, Severity};
+use crate::diag::{line_col, Diagnostic, Note, Severity};
 use crate::syntax::ast::{
     Assign, BodyDef, By, Chain, File, Item, Label, Name, ProsePart, SignDecl, Span, Stmt, StmtKind,
 };
@@ -61,8 +61,8 @@ pub(crate) struct Problem {
     pub line: Option<usize>,
     /// The message (raw text).
     pub message: String,
-    /// Its notes (raw text).
-    pub notes: Vec<String>,
+    /// Its notes.
+    pub notes: Vec<Note>,
 }
 
 /// A block of the document.
@@ -157,52 +157,53 @@ pub(crate) fn rich(t: &str) -> Vec<Inline> {
 }
 
 /// The worked solution of a report, as written.
-/// A note of a failure, typeset where it states expressions (the notes print normal
-/// forms in rigor's own syntax): `left side:  g m/2`, `after using the facts, left −
-/// right = …`, and the values of a counterexample. Anything that does not read stays
-/// words.
-pub(crate) fn note_inlines(note: &str) -> Vec<Inline> {
+/// A note of a failure, typeset where it states expressions (a side, the difference
+/// left after the facts, the values of a counterexample: normal forms in rigor's own
+/// syntax). An expression that does not read stays words.
+pub(crate) fn note_inlines(note: &Note) -> Vec<Inline> {
     let read = |t: &str| {
         crate::syntax::parse_expr(t.trim(), &crate::syntax::ParseOptions::default())
             .ok()
             .map(|e| super::expr::expr_latex(&e))
     };
-    const LEADS: [&str; 4] = [
-        "left side:",
-        "right side:",
-        "after using the facts, left − right =",
-        "after eliminating what the facts give, left − right =",
-    ];
-    if let Some(lead) = LEADS.iter().find(|l| note.starts_with(**l)) {
-        if let Some(m) = read(&note[lead.len()..]) {
-            // Set as a display would set it, so fractions keep their size.
-            return vec![
-                Inline::Text(format!("{lead} ")),
-                Inline::Math(format!("\\displaystyle {m}")),
-            ];
-        }
-    }
-    if let Some(rest) = note.strip_prefix("counterexample: at ") {
-        let (values, tail) = rest.split_once(" the ").unwrap_or((rest, ""));
-        let typeset: Option<Vec<String>> = values
-            .split(", ")
-            .map(|v| {
-                let (name, value) = v.split_once(" = ")?;
-                Some(format!("{} = {}", read(name)?, read(value)?))
-            })
-            .collect();
-        if let Some(t) = typeset {
-            let mut out = vec![
-                Inline::Text("counterexample: at ".into()),
-                Inline::Math(t.join(",\\ ")),
-            ];
-            if !tail.is_empty() {
-                out.push(Inline::Text(format!(" the {tail}")));
+    let words = || vec![Inline::Text(note.to_string())];
+    // Set as a display would set it, so fractions keep their size.
+    let lead_and = |lead: &str, value: &str| match read(value) {
+        Some(m) => vec![
+            Inline::Text(format!("{lead} ")),
+            Inline::Math(format!("\\displaystyle {m}")),
+        ],
+        None => words(),
+    };
+    match note {
+        Note::Side { left: true, value } => lead_and("left side:", value),
+        Note::Side { left: false, value } => lead_and("right side:", value),
+        Note::Remainder { eliminated, value } => lead_and(
+            if *eliminated {
+                "after eliminating what the facts give, left − right ="
+            } else {
+                "after using the facts, left − right ="
+            },
+            value,
+        ),
+        Note::Counterexample { at, left, right } if !at.is_empty() => {
+            let typeset: Option<Vec<String>> = at
+                .iter()
+                .map(|(name, value)| Some(format!("{} = {}", read(name)?, read(value)?)))
+                .collect();
+            match typeset {
+                Some(t) => vec![
+                    Inline::Text("counterexample: at ".into()),
+                    Inline::Math(t.join(",\\ ")),
+                    Inline::Text(format!(
+                        " the left side is {left} and the right side {right}"
+                    )),
+                ],
+                None => words(),
             }
-            return out;
         }
+        _ => words(),
     }
-    vec![Inline::Text(note.to_string())]
 }
 
 pub(crate) fn build(report: &FileReport) -> Solution {
@@ -915,7 +916,7 @@ impl<'a> Builder<'a> {
         let mut notes = d.notes.clone();
         if let Some((_, hint)) = d.primary.as_ref().filter(|(_, h)| !h.is_empty()) {
             if in_claim && d.severity == Severity::Error {
-                notes.insert(0, hint.clone());
+                notes.insert(0, Note::from(hint.as_str()));
             }
         }
         Problem {
@@ -924,7 +925,7 @@ impl<'a> Builder<'a> {
                 .primary
                 .as_ref()
                 .map(|(s, _)| line_col(&self.report.source, s.start).0),
-            message: d.message.clone(),
+            message: d.message.to_string(),
             notes,
         }
     }

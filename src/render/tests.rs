@@ -6,7 +6,7 @@ use super::text::{latex_text, markdown_text, mathjax_text};
 use super::{github, human, json, latex, markdown, Detail};
 use crate::check::report::{ClaimReport, FileReport, Justification, LinkReport, Status};
 use crate::diag::Code;
-use crate::diag::{Diagnostic, Severity};
+use crate::diag::{Diagnostic, FactRef, Severity};
 use crate::syntax::ast::{Item, Span, StmtKind};
 use crate::syntax::{parse_chain, parse_expr, parse_file, ParseOptions};
 use num_bigint::BigInt;
@@ -209,6 +209,7 @@ fn github_commands() {
                 primary: None,
                 notes: vec![],
                 mistake: None,
+                reached: None,
             },
         ],
         ..Default::default()
@@ -288,7 +289,7 @@ fn summary_line() {
         SMALL,
         vec![
             Status::Verified {
-                how: Justification::Facts(vec!["Fx".into()]),
+                how: Justification::Facts(vec![FactRef::Label("Fx".into())]),
                 side_conditions: vec![],
             },
             Status::Failed,
@@ -323,7 +324,7 @@ fn human_verbose_lines() {
         SMALL,
         vec![
             Status::Verified {
-                how: Justification::Facts(vec!["Fx".into(), "line 3".into()]),
+                how: Justification::Facts(vec![FactRef::Label("Fx".into()), FactRef::Line(3)]),
                 side_conditions: vec![],
             },
             Status::Verified {
@@ -351,7 +352,7 @@ fn json_fields() {
         SMALL,
         vec![
             Status::Verified {
-                how: Justification::Facts(vec!["Fx".into()]),
+                how: Justification::Facts(vec![FactRef::Label("Fx".into())]),
                 side_conditions: vec!["m != 0".into()],
             },
             Status::Failed,
@@ -877,7 +878,11 @@ fn math_in_titles_and_headings_is_typeset() {
 #[test]
 fn failure_notes_typeset_their_expressions_and_keep_words_as_words() {
     use super::solution::{note_inlines, Inline};
-    let left = note_inlines("left side:  L^2 m/12");
+    use crate::diag::Note;
+    let left = note_inlines(&Note::Side {
+        left: true,
+        value: "L^2 m/12".into(),
+    });
     assert_eq!(
         left,
         vec![
@@ -885,18 +890,29 @@ fn failure_notes_typeset_their_expressions_and_keep_words_as_words() {
             Inline::Math("\\displaystyle \\frac{L^{2}\\,m}{12}".into())
         ]
     );
-    let cx = note_inlines("counterexample: at L = 2, m = 11/4 the left side is 11/12");
+    let cx = note_inlines(&Note::Counterexample {
+        at: vec![("L".into(), "2".into()), ("m".into(), "11/4".into())],
+        left: "11/12".into(),
+        right: "1".into(),
+    });
     assert!(
         matches!(&cx[1], Inline::Math(m) if m == "L = 2,\\ m = \\frac{11}{4}"),
         "{cx:?}"
     );
     // What does not read as an expression stays text (escaped where it is written).
-    for words in [
-        "left side: \\input{/etc/passwd}",
-        "the two sides have opposite signs (a sign error?)",
-    ] {
-        assert_eq!(note_inlines(words), vec![Inline::Text(words.into())]);
-    }
+    let hostile = Note::Side {
+        left: true,
+        value: "\\input{/etc/passwd}".into(),
+    };
+    assert_eq!(
+        note_inlines(&hostile),
+        vec![Inline::Text("left side:  \\input{/etc/passwd}".into())]
+    );
+    let words = "the two sides have opposite signs (a sign error?)";
+    assert_eq!(
+        note_inlines(&words.into()),
+        vec![Inline::Text(words.into())]
+    );
 }
 
 /// A file whose results verify, fail, and are undecided, with hostile `by` text.
