@@ -305,33 +305,8 @@ pub fn check_paths(paths: &[PathBuf], opts: &Options) -> Vec<FileReport> {
             Ok(()) => {}
         }
     }
-    let results: Mutex<Vec<Option<FileReport>>> = Mutex::new(vec![None; jobs.len()]);
-    let next = Mutex::new(0usize);
-    let workers = std::thread::available_parallelism()
-        .map_or(2, |n| n.get())
-        .min(jobs.len().max(1));
-    std::thread::scope(|s| {
-        for _ in 0..workers {
-            s.spawn(|| loop {
-                let i = {
-                    let mut n = next.lock().unwrap_or_else(|e| e.into_inner());
-                    let i = *n;
-                    *n += 1;
-                    i
-                };
-                let Some((path, root)) = jobs.get(i) else {
-                    break;
-                };
-                let report = check_file(path, root, opts);
-                let mut r = results.lock().unwrap_or_else(|e| e.into_inner());
-                if let Some(slot) = r.get_mut(i) {
-                    *slot = Some(report);
-                }
-            });
-        }
-    });
+    let results = parallel(&jobs, |(path, root)| check_file(path, root, opts));
     let mut out: Vec<FileReport> = Vec::new();
-    let results = results.into_inner().unwrap_or_else(|e| e.into_inner());
     let mut early = early.into_iter().peekable();
     for (i, r) in results.into_iter().enumerate() {
         while early.peek().is_some_and(|e| e.0 == i) {
@@ -339,9 +314,7 @@ pub fn check_paths(paths: &[PathBuf], opts: &Options) -> Vec<FileReport> {
                 out.push(e.1);
             }
         }
-        if let Some(r) = r {
-            out.push(r);
-        }
+        out.push(r);
     }
     out.extend(early.map(|e| e.1));
     out

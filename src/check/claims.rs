@@ -2,10 +2,10 @@
 //! `step.rs`), and what a verified claim adds to the facts (with the conditions it was
 //! derived under) and to the file's exports.
 
+use super::elimination::Fact;
 use super::report::{ClaimReport, LinkReport, Status};
 use super::scope::{Decl, Scope};
 use super::signs::respects_sign;
-use super::solve::Fact;
 use super::step::LinkInput;
 use super::walk::{Checker, Known};
 use crate::clock::Deadline;
@@ -293,9 +293,10 @@ impl Checker<'_, '_> {
 
     /// Whether `d` is zero once the unknowns are eliminated with every fact in scope.
     fn zero_by_facts(&self, d: &Rat) -> bool {
-        let facts: Vec<super::solve::Fact> = self.facts.iter().map(|k| k.fact.clone()).collect();
+        let facts: Vec<super::elimination::Fact> =
+            self.facts.iter().map(|k| k.fact.clone()).collect();
         let is_unknown = |a| super::walk::unknown_atom(&self.scope, a);
-        super::solve::eliminate_all(d, &facts, &is_unknown, &self.env.signs, None, false)
+        super::elimination::eliminate_all(d, &facts, &is_unknown, &self.env.signs, None, false)
             .is_ok_and(|(t, _, _)| t.is_zero())
     }
 

@@ -111,7 +111,8 @@ impl Checker<'_, '_> {
         let signs = &self.env.signs;
         let span = input.span;
         let steps = red.elim.as_ref().map_or(&[][..], |e| &e.steps[..]);
-        let reduced = super::solve::apply_steps(d, steps, signs).unwrap_or_else(|_| d.clone());
+        let reduced =
+            super::elimination::apply_steps(d, steps, signs).unwrap_or_else(|_| d.clone());
         if need == Need::NonZero {
             let zero = reduced.is_zero() || forced_zero(&reduced, &red.scope, signs);
             if zero && elimination {

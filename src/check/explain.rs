@@ -4,8 +4,8 @@
 
 use super::confirm::Situation;
 
-use super::solve::Step;
-use super::solve::{apply_steps, unknown_name, Fact};
+use super::elimination::Step;
+use super::elimination::{apply_steps, unknown_name, Fact};
 use super::step::{LinkInput, Reduced};
 use crate::diag::Code;
 
@@ -37,7 +37,15 @@ impl Checker<'_, '_> {
         let signs = &self.env.signs;
         let is_unknown = |x: AtomId| unknown_atom(&self.scope, x);
         let elim = |facts: &[Fact], params: bool| {
-            super::solve::eliminate_all(&red.diff, facts, &is_unknown, signs, deadline, params).ok()
+            super::elimination::eliminate_all(
+                &red.diff,
+                facts,
+                &is_unknown,
+                signs,
+                deadline,
+                params,
+            )
+            .ok()
         };
         let not_verified = |headline: Text, notes: Vec<Note>| {
             let mut d = Diagnostic::error(Code::NotVerified, headline, span, "not verified");
@@ -147,8 +155,15 @@ impl Checker<'_, '_> {
             };
             let is_unknown = |a: AtomId| a == x || unknown_atom(&self.scope, a);
             let elim = |target: &Rat| {
-                super::solve::eliminate_all(target, &red.scope, &is_unknown, signs, deadline, false)
-                    .ok()
+                super::elimination::eliminate_all(
+                    target,
+                    &red.scope,
+                    &is_unknown,
+                    signs,
+                    deadline,
+                    false,
+                )
+                .ok()
             };
             let Some((rest, _, _)) = elim(&red.diff) else {
                 continue;
@@ -225,15 +240,21 @@ impl Checker<'_, '_> {
     fn free_state_sides(&self, red: &Reduced) -> Option<Sides> {
         let signs = &self.env.signs;
         let is_unknown = |x: AtomId| unknown_atom(&self.scope, x);
-        let (target, steps, left) =
-            super::solve::eliminate_all(&red.diff, &red.scope, &is_unknown, signs, None, false)
-                .ok()?;
+        let (target, steps, left) = super::elimination::eliminate_all(
+            &red.diff,
+            &red.scope,
+            &is_unknown,
+            signs,
+            None,
+            false,
+        )
+        .ok()?;
         // Facts left over constrain nothing that an unknown absent from the difference
         // can absorb (`M = -m g d sin(theta)` only says what M is); any other quantity
         // they constrain must be absent from the difference.
         let depends = |r: &Rat, a: AtomId| crate::normal::subst::depends_on(r, a);
         let absorbs = |u: AtomId| is_unknown(u) && !depends(&target, u);
-        let constrained = super::solve::constrained_atoms(&left, &absorbs, signs);
+        let constrained = super::elimination::constrained_atoms(&left, &absorbs, signs);
         if constrained.iter().any(|c| depends(&target, *c)) {
             return None;
         }
@@ -384,7 +405,7 @@ impl Checker<'_, '_> {
         let declared_unknown =
             |u: AtomId| atom::sym_name(u).is_some_and(|n| self.scope.unknowns.contains(&n));
         for u in stuck.iter().filter(|u| declared_unknown(**u)) {
-            if let Some((fact, n)) = super::solve::power_only(&facts, *u, &self.env.signs) {
+            if let Some((fact, n)) = super::elimination::power_only(&facts, *u, &self.env.signs) {
                 let name = unknown_name(*u);
                 headline = format!("not verified: {fact} gives {name} only through {name}^{n}");
                 powers.push(format!(
@@ -530,7 +551,7 @@ fn tied_atoms(
     is_unknown: &dyn Fn(AtomId) -> bool,
     signs: &crate::normal::Assumptions,
 ) -> Vec<AtomId> {
-    let constrained = super::solve::constrained_atoms(left, is_unknown, signs);
+    let constrained = super::elimination::constrained_atoms(left, is_unknown, signs);
     let mut mine = Vec::new();
     crate::decide::symbols_in(target, &mut mine);
     mine.extend(

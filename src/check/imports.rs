@@ -1,9 +1,9 @@
 //! `use [..] from "file" with …`: the verified claims of another file, instantiated,
 //! become facts here, with the conditions they were derived under.
 
+use super::elimination::Fact;
 use super::entry::Exports;
 use super::signs::{respects_sign, sign_of};
-use super::solve::Fact;
 use super::walk::{Checker, Known};
 use crate::diag::{Cited, Code, FactRef};
 use crate::lower::{Condition, Need};

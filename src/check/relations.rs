@@ -125,20 +125,20 @@ impl Checker<'_, '_> {
         let signs = &self.env.signs;
         let is_unknown = |x: AtomId| unknown_atom(&self.scope, x);
         let steps = red.elim.as_ref().map_or(&[][..], |e| &e.steps[..]);
-        let left: Vec<super::solve::Fact> = red
+        let left: Vec<super::elimination::Fact> = red
             .scope
             .iter()
             .filter_map(|f| {
-                super::solve::apply_steps(&f.value, steps, signs)
+                super::elimination::apply_steps(&f.value, steps, signs)
                     .ok()
                     .filter(|v| !v.is_zero())
-                    .map(|value| super::solve::Fact {
+                    .map(|value| super::elimination::Fact {
                         value,
                         name: f.name.clone(),
                     })
             })
             .collect();
-        let constrained = super::solve::constrained_atoms(&left, &is_unknown, signs);
+        let constrained = super::elimination::constrained_atoms(&left, &is_unknown, signs);
         let mut mine = Vec::new();
         crate::decide::symbols_in(d, &mut mine);
         mine.iter().any(|a| constrained.contains(a))
@@ -158,7 +158,7 @@ impl Checker<'_, '_> {
         let signs = &self.env.signs;
         let is_unknown = |x: AtomId| unknown_atom(&self.scope, x);
         let value = |r: &Rat| {
-            super::solve::reduce_fully(r, &red.used, &is_unknown, signs, input.deadline)
+            super::elimination::reduce_fully(r, &red.used, &is_unknown, signs, input.deadline)
                 .unwrap_or_else(|_| r.clone())
         };
         let (va, vb) = (value(&red.a), value(&red.b));

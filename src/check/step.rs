@@ -3,8 +3,8 @@
 //! for each relation. Explaining a failure lives in `explain.rs`, inequalities and
 //! `~=` in `relations.rs`.
 
+use super::elimination::{apply_steps, contradiction, eliminate, Elimination, Fact};
 use super::report::{Justification, Status};
-use super::solve::{apply_steps, contradiction, eliminate, Elimination, Fact};
 use super::walk::{unknown_atom, Checker, Known};
 use crate::clock::Deadline;
 use crate::diag::Diagnostic;
@@ -328,7 +328,7 @@ fn working(
         .steps
         .iter()
         .map(|s| Solved {
-            unknown: super::solve::unknown_name(s.unknown),
+            unknown: super::elimination::unknown_name(s.unknown),
             value: plain(&s.value),
             fact: s.fact.clone(),
             divisor: s.divisor.as_ref().map(plain),

@@ -2,11 +2,11 @@
 //! bodies, givens and constraints. Claims are in `claims.rs`, imports in `imports.rs`,
 //! deciding a link in `step.rs`.
 
+use super::elimination::Fact;
 use super::entry::{Exports, Loader};
 use super::report::FileReport;
 use super::scope::{undeclared, Decl, Scope};
 use super::signs::sign_of;
-use super::solve::Fact;
 use crate::calculus::{self, Wrt};
 use crate::diag::Code;
 use crate::diag::{Cited, Diagnostic, FactRef, Reached, Severity, Text};
@@ -521,7 +521,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             return true;
         }
         let values: Vec<Fact> = self.facts.iter().map(|k| k.fact.clone()).collect();
-        let Some(why) = super::solve::contradiction(&values, &self.env.signs) else {
+        let Some(why) = super::elimination::contradiction(&values, &self.env.signs) else {
             return true;
         };
         let line = self.line(span);

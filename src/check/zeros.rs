@@ -15,7 +15,7 @@
 //!
 //! Every consequence is an exact identity over the reals; nothing here is sampled.
 
-use super::solve::{zero_by_facts, Fact};
+use super::elimination::{zero_by_facts, Fact};
 use crate::diag::Cited;
 use crate::normal::atom;
 use crate::normal::{Assumptions, Poly, Rat, Sign};

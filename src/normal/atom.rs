@@ -38,7 +38,7 @@ pub enum Atom {
     /// `b^e` with a symbolic exponent and a base of unknown sign.
     Pow(Rat, Rat),
     /// A sum kept as one factor so that its large powers are not expanded
-    /// ([`power::keep`](super::power::keep)): its value is `p`, a primitive polynomial of
+    /// (`power::keep`): its value is `p`, a primitive polynomial of
     /// two or more terms with a positive leading coefficient and no monomial factor.
     Factor(Poly),
     /// `∫ x₁^e₁ ⋯ xₙ^eₙ dm` over the abstract body named: every coordinate with its exponent.

@@ -48,15 +48,66 @@ pub(crate) struct Row {
     pub by: Option<Just>,
     /// `\text{where } …` on the last line (LaTeX).
     pub where_: Option<String>,
-    /// A marker for a link that is not verified (`not verified`, `not checked`).
-    pub flag: Option<&'static str>,
+    /// The mark of a link that is not verified.
+    pub flag: Option<Mark>,
+}
+
+/// One line of an `align*`, in LaTeX or MathJax (`escape` sets words inside `\text`):
+/// `lhs &= rhs \quad\text{(by …)}`, then its `where` and the mark of a link that did
+/// not verify.
+pub(crate) fn row_math(escape: fn(&str) -> String, row: &Row, out: &mut String) {
+    if let Some(lhs) = &row.lhs {
+        out.push_str(lhs);
+        out.push(' ');
+    }
+    out.push_str(&format!("&{} {}", row.rel, row.rhs));
+    match &row.by {
+        Some(Just::Text(t)) => out.push_str(&format!(" \\quad\\text{{(by {})}}", escape(t))),
+        Some(Just::Labels(ls)) => {
+            let ls: Vec<String> = ls.iter().map(|l| format!("({})", escape(l))).collect();
+            out.push_str(&format!(" \\quad\\text{{by {}}}", ls.join(", ")));
+        }
+        None => {}
+    }
+    if let Some(w) = &row.where_ {
+        out.push_str(&format!(" \\qquad {w}"));
+    }
+    if let Some(f) = row.flag {
+        out.push_str(&format!(" \\quad\\textbf{{[{}]}}", f.words()));
+    }
+}
+
+/// What a problem shown in a document is: the mark of the link of a claim it is about,
+/// or a diagnostic outside a claim by its severity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum ProblemKind {
+    /// About a link of a claim.
+    Link(Mark),
+    /// An error outside a claim.
+    Error,
+    /// A warning.
+    Warning,
+    /// A note.
+    Note,
+}
+
+impl ProblemKind {
+    /// `does not hold`, `error`, `warning`, ….
+    pub(crate) fn words(self) -> &'static str {
+        match self {
+            ProblemKind::Link(m) => m.words(),
+            ProblemKind::Error => "error",
+            ProblemKind::Warning => "warning",
+            ProblemKind::Note => "note",
+        }
+    }
 }
 
 /// A diagnostic shown in the document.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Problem {
-    /// `not verified`, `error`, `warning` or `note`.
-    pub kind: &'static str,
+    /// What it is.
+    pub kind: ProblemKind,
     /// The 1-based line it points at.
     pub line: Option<usize>,
     /// The message (raw text).
@@ -520,7 +571,7 @@ impl<'a> Builder<'a> {
     /// chain was shown false, else "not verified" when one is undecided, else "not
     /// checked" (including a claim the report does not hold); `None` when every link
     /// verified.
-    fn result_mark(&self, stmt: &Stmt, chain: &Chain) -> Option<&'static str> {
+    fn result_mark(&self, stmt: &Stmt, chain: &Chain) -> Option<Mark> {
         let claim = self.claim_report(stmt);
         let statuses: Vec<Option<&Status>> = chain
             .links
@@ -538,11 +589,11 @@ impl<'a> Builder<'a> {
         }
         let has = |f: fn(&Status) -> bool| statuses.iter().flatten().any(|s| f(s));
         Some(if has(|s| *s == Status::Failed) {
-            DOES_NOT_HOLD
+            Mark::DoesNotHold
         } else if has(|s| *s == Status::Undecided) {
-            NOT_VERIFIED
+            Mark::NotVerified
         } else {
-            NOT_CHECKED
+            Mark::NotChecked
         })
     }
 
@@ -804,7 +855,7 @@ impl<'a> Builder<'a> {
                     .and_then(|c| c.links.get(k))
                     .map(|l| &l.status)
                     .or_else(|| self.report.link_status(link.span));
-                let flag = status.map_or(Some(NOT_CHECKED), mark);
+                let flag = status.map_or(Some(Mark::NotChecked), mark);
                 let by = link.by.as_ref().map(|(by, _)| match by {
                     By::Text(t) => Just::Text(t.clone()),
                     By::Labels(ls) => {
@@ -903,13 +954,15 @@ impl<'a> Builder<'a> {
 
     fn problem(&self, d: &Diagnostic, in_claim: bool) -> Problem {
         let kind = match d.severity {
-            // In a claim, the words of the verdict of the link it is about.
-            Severity::Error if in_claim => {
-                self.status_at(d).and_then(mark).unwrap_or("not verified")
-            }
-            Severity::Error => "error",
-            Severity::Warning => "warning",
-            Severity::Note => "note",
+            // In a claim, the mark of the link it is about.
+            Severity::Error if in_claim => ProblemKind::Link(
+                self.status_at(d)
+                    .and_then(mark)
+                    .unwrap_or(Mark::NotVerified),
+            ),
+            Severity::Error => ProblemKind::Error,
+            Severity::Warning => ProblemKind::Warning,
+            Severity::Note => ProblemKind::Note,
         };
         // The words under the caret are the hint ("the left side is 2 × the right side
         // (a constant factor)"): a document has no caret, so they lead the notes.
@@ -935,21 +988,36 @@ impl<'a> Builder<'a> {
 /// false "does not hold" (E0301), one neither shown true nor false is "not verified"
 /// (E0302), and one that could not be read or cites a failure is "not checked".
 /// `None` for a verified link.
-pub(crate) fn mark(s: &Status) -> Option<&'static str> {
+pub(crate) fn mark(s: &Status) -> Option<Mark> {
     match s {
         Status::Verified { .. } => None,
-        Status::Failed => Some(DOES_NOT_HOLD),
-        Status::Undecided => Some(NOT_VERIFIED),
-        Status::Error | Status::NotChecked => Some(NOT_CHECKED),
+        Status::Failed => Some(Mark::DoesNotHold),
+        Status::Undecided => Some(Mark::NotVerified),
+        Status::Error | Status::NotChecked => Some(Mark::NotChecked),
     }
 }
 
-/// The mark of a link shown false.
-pub(crate) const DOES_NOT_HOLD: &str = "does not hold";
-/// The mark of a link neither verified nor refuted.
-pub(crate) const NOT_VERIFIED: &str = "not verified";
-/// The mark of a link that was not checked.
-pub(crate) const NOT_CHECKED: &str = "not checked";
+/// The mark of a link that did not verify.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Mark {
+    /// Shown false.
+    DoesNotHold,
+    /// Neither verified nor refuted.
+    NotVerified,
+    /// Not checked.
+    NotChecked,
+}
+
+impl Mark {
+    /// The words every view uses for it.
+    pub(crate) fn words(self) -> &'static str {
+        match self {
+            Mark::DoesNotHold => "does not hold",
+            Mark::NotVerified => "not verified",
+            Mark::NotChecked => "not checked",
+        }
+    }
+}
 
 fn is_declaration(kind: &StmtKind) -> bool {
     matches!(

@@ -212,7 +212,7 @@ fn eliminate_left(
         // The best (fact, unknown) pair: no division by a quantity of unknown sign if
         // possible, then the fact with fewest unknowns.
         let mut best = best_pair(&unknowns, (&facts, &mut memo), is_unknown, signs, strict)?;
-        if best.as_ref().is_none_or(|b| b.0 .0) {
+        if best.as_ref().is_none_or(|b| b.0.divides) {
             // Every way to remove an unknown of the target divides: first remove another
             // unknown of the facts without dividing, if one can be.
             let mut others: Vec<AtomId> = Vec::new();
@@ -356,7 +356,18 @@ fn multiple_of((target, atoms): (&Rat, &[AtomId]), fact: &Rat, signs: &Assumptio
         .is_ok_and(|r| r.den().atoms().is_empty() || signs.poly(r.den()).is_nonzero())
 }
 
-type Pair = ((bool, bool, usize), usize, AtomId, Solution);
+/// How good a (fact, unknown) pair is to solve: smaller is better, field by field.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct Rank {
+    /// Solving divides by a quantity the signs do not show nonzero.
+    divides: bool,
+    /// The fact is not linear in the unknown.
+    nonlinear: bool,
+    /// The number of unknowns in the fact.
+    unknowns: usize,
+}
+
+type Pair = (Rank, usize, AtomId, Solution);
 
 /// A fact's ways of being solved (or none) for the unknowns tried, with the solution
 /// once it was needed.
@@ -391,10 +402,12 @@ fn best_pair(
                 continue;
             }
             let nonlinear = f.value.num().degree_in(*u) != 1 || f.value.den().contains(*u);
-            if best
-                .as_ref()
-                .is_some_and(|b| b.0 <= (false, nonlinear, n_unknowns))
-            {
+            let at_best = Rank {
+                divides: false,
+                nonlinear,
+                unknowns: n_unknowns,
+            };
+            if best.as_ref().is_some_and(|b| b.0 <= at_best) {
                 continue;
             }
             let Some(m) = memo.get_mut(i) else {
@@ -407,9 +420,12 @@ fn best_pair(
             let Some(Some((s, solution))) = m.get_mut(u) else {
                 continue;
             };
-            let rank = (s.divisor.is_some(), nonlinear, n_unknowns);
+            let rank = Rank {
+                divides: s.divisor.is_some(),
+                ..at_best
+            };
             // Only the pair chosen needs its solution.
-            if strict && rank.0 || best.as_ref().is_some_and(|b| rank >= b.0) {
+            if strict && rank.divides || best.as_ref().is_some_and(|b| rank >= b.0) {
                 continue;
             }
             let sol = match solution {
