@@ -74,7 +74,8 @@ impl Checker<'_, '_> {
         deadline: Option<Deadline>,
     ) {
         let span = claim.span;
-        if let Some(msg) = self.uses_failed_name(chain) {
+        if let Some((name, msg)) = self.uses_failed_name(chain) {
+            self.noted_uses.insert(name);
             return self.push_not_checked_claim(claim, chain, msg);
         }
         let Some(subs) = self.where_subs(where_) else {
@@ -463,7 +464,7 @@ impl Checker<'_, '_> {
 
     /// "not checked: …" when the chain uses a name that a failed `use` would have
     /// defined (the `use` has the error).
-    fn uses_failed_name(&self, chain: &Chain) -> Option<Text> {
+    fn uses_failed_name(&self, chain: &Chain) -> Option<(String, Text)> {
         if self.failed_names.is_empty() {
             return None;
         }
@@ -478,7 +479,8 @@ impl Checker<'_, '_> {
             .collect();
         names.sort_by(|a, b| (a.0, &a.1).cmp(&(b.0, &b.1)));
         let (_, name, why) = names.into_iter().next()?;
-        Some(Text::from(format!("not checked: it uses `{name}`, ")).then(&why))
+        let msg = Text::from(format!("not checked: it uses `{name}`, ")).then(&why);
+        Some((name, msg))
     }
 
     /// A claim none of whose links is checked (`msg` says why, as a note).

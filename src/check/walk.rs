@@ -15,7 +15,7 @@ use crate::normal::atom::{self, AtomId};
 use crate::normal::print::plain;
 use crate::normal::{Rat, Sign};
 use crate::syntax::ast::{BodyDef, Chain, Expr, File, Item, Label, RelOp, Span, StmtKind};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// Facts in scope past which a new given is not checked against all the others for a
 /// contradiction (each check eliminates them all); claims still refuse contradictory
@@ -65,6 +65,8 @@ pub struct Checker<'l, 'o> {
     /// defined (a `let` of the other file), with why (`undeclared (line 7)`). A later
     /// use is not checked, rather than a second error for the same mistake.
     pub(super) failed_names: HashMap<String, (usize, Text)>,
+    /// The failed names whose later use was already noted as not checked (once each).
+    pub(super) noted_uses: HashSet<String>,
     pub(super) exports: Exports,
     body_coords: HashMap<String, Vec<String>>,
     /// Set when lowering ran out of time (the link is undecided).
@@ -106,6 +108,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             failed_labels: HashMap::new(),
             contradicted: None,
             failed_names: HashMap::new(),
+            noted_uses: HashSet::new(),
             exports: Exports::default(),
             body_coords: HashMap::new(),
             timed_out: false,
@@ -205,7 +208,7 @@ impl<'l, 'o> Checker<'l, 'o> {
         for (name, span) in &bad {
             if let Some((_, why)) = self.failed_names.get(name) {
                 let msg = Text::from(format!("not checked: it uses `{name}`, ")).then(why);
-                if !self.report.diagnostics.iter().any(|d| d.message == msg) {
+                if self.noted_uses.insert(name.clone()) {
                     self.note_not_checked(msg, *span);
                 }
                 continue;

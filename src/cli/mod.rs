@@ -507,15 +507,25 @@ pub fn check(
     }
 }
 
+/// How `rigor latex` and `rigor markdown` write a document.
+pub struct DocumentArgs<'a> {
+    /// Where to write it (standard output when `None`).
+    pub out: Option<&'a Path>,
+    /// The title of a book (a folder).
+    pub title: Option<&'a str>,
+    /// LaTeX, else Markdown.
+    pub latex: bool,
+    /// Whether to fill in the work the files skipped.
+    pub detail: rigor::render::Detail,
+}
+
 /// `rigor latex` / `rigor markdown`: renders even when a step fails (marked), exit 1 then.
 /// A folder gives one book of all its files. With [`Detail::Steps`](rigor::render::Detail)
 /// (`--steps`) the work the files skipped is filled in.
-pub fn document(
-    file: &Path,
-    (out, title): (Option<&Path>, Option<&str>),
-    (latex, detail): (bool, rigor::render::Detail),
-    opts: &ParseOptions,
-) -> u8 {
+pub fn document(file: &Path, args: &DocumentArgs<'_>, opts: &ParseOptions) -> u8 {
+    let DocumentArgs {
+        out, latex, detail, ..
+    } = *args;
     let options = rigor::check::Options {
         parse: *opts,
         // The limits `main` installed on this thread, for the checking threads too.
@@ -525,7 +535,7 @@ pub fn document(
     let mut reports = rigor::files::check_paths(&[file.to_path_buf()], &options);
     if file.is_dir() {
         return match rigor::files::in_book_order(file, reports) {
-            Ok(reports) => book(&reports, (out, title), (latex, detail)),
+            Ok(reports) => book(&reports, args),
             Err(e) => {
                 errln!("error: {e}");
                 2
@@ -563,11 +573,13 @@ pub fn document(
 
 /// A book of several files (already in order): written like one document; the exit
 /// status of the worst file.
-fn book(
-    reports: &[FileReport],
-    (out, title): (Option<&Path>, Option<&str>),
-    (latex, detail): (bool, rigor::render::Detail),
-) -> u8 {
+fn book(reports: &[FileReport], args: &DocumentArgs<'_>) -> u8 {
+    let DocumentArgs {
+        out,
+        title,
+        latex,
+        detail,
+    } = *args;
     let title = title.unwrap_or("Worked solutions");
     let text = if latex {
         rigor::render::latex::book_with(reports, title, detail)
