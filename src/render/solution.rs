@@ -10,7 +10,8 @@ use super::Detail;
 use crate::check::report::{ClaimReport, FileReport, Status};
 use crate::diag::{line_col, Diagnostic, Note, Severity};
 use crate::syntax::ast::{
-    Assign, BodyDef, By, Chain, File, Item, Label, Name, ProsePart, SignDecl, Span, Stmt, StmtKind,
+    Assign, BodyDef, By, Chain, ExprKind, File, Item, Label, Name, ProsePart, SignDecl, Span, Stmt,
+    StmtKind,
 };
 
 /// A piece of a paragraph.
@@ -29,8 +30,8 @@ pub(crate) enum Inline {
 /// The justification of a link.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) enum Just {
-    /// `by some words` (raw text).
-    Text(String),
+    /// `by some words`: words, and the maths written between `$` typeset.
+    Text(Vec<Inline>),
     /// `by [Fx], [MG]` (raw label names).
     Labels(Vec<String>),
 }
@@ -62,7 +63,17 @@ pub(crate) fn row_math(escape: fn(&str) -> String, row: &Row, out: &mut String) 
     }
     out.push_str(&format!("&{} {}", row.rel, row.rhs));
     match &row.by {
-        Some(Just::Text(t)) => out.push_str(&format!(" \\quad\\text{{(by {})}}", escape(t))),
+        Some(Just::Text(parts)) => {
+            // Maths leaves the `\text` and comes back: MathJax sets no `$` inside it.
+            let words: String = parts
+                .iter()
+                .map(|p| match p {
+                    Inline::Math(m) => format!("}}{m}\\text{{"),
+                    Inline::Text(t) | Inline::Code(t) | Inline::Strong(t) => escape(t),
+                })
+                .collect();
+            out.push_str(&format!(" \\quad\\text{{(by {words})}}"));
+        }
         Some(Just::Labels(ls)) => {
             let ls: Vec<String> = ls.iter().map(|l| format!("({})", escape(l))).collect();
             out.push_str(&format!(" \\quad\\text{{by {}}}", ls.join(", ")));
@@ -237,6 +248,25 @@ pub(crate) fn note_inlines(note: &Note) -> Vec<Inline> {
             },
             value,
         ),
+        Note::Reduced { using, left, right } => match (read(left), read(right)) {
+            (Some(l), Some(r)) => {
+                let lead = if using.is_empty() {
+                    "with the facts: left ".to_string()
+                } else {
+                    format!(
+                        "with the facts (after using {}): left ",
+                        crate::diag::cite(using)
+                    )
+                };
+                vec![
+                    Inline::Text(lead),
+                    Inline::Math(l),
+                    Inline::Text(", right ".into()),
+                    Inline::Math(r),
+                ]
+            }
+            _ => words(),
+        },
         Note::Counterexample { at, left, right } if !at.is_empty() => {
             let typeset: Option<Vec<String>> = at
                 .iter()
@@ -307,12 +337,91 @@ struct Builder<'a> {
     /// Equation numbers of the labelled givens, constraints and claims, in document
     /// order: labels never appear in the output, their numbers do.
     numbers: std::collections::HashMap<String, usize>,
-    /// The unknowns, for the "Find" line.
+    /// What the derivation finds, for the "Find" line (said once, after the first
+    /// declarations).
     find: Vec<String>,
     /// Where the file sits in a book, if it is one section of several.
     place: Option<&'a Place<'a>>,
     /// The work to fill in, with [`Detail::Steps`].
     steps: Option<Steps<'a>>,
+}
+
+/// Words with maths between `$` (rigor's syntax, as in prose): the maths typeset where it
+/// reads, the rest kept as words (an unclosed `$` included).
+pub(crate) fn words_and_math(t: &str, ctx: &Ctx) -> Vec<Inline> {
+    let opts = crate::syntax::ParseOptions::default();
+    let mut out = Vec::new();
+    let mut pieces = t.split('$');
+    let mut words = pieces.next().unwrap_or("").to_string();
+    let mut rest: Vec<&str> = pieces.collect();
+    // An odd `$` at the end opens nothing.
+    let unclosed = (rest.len() % 2 == 1).then(|| rest.pop()).flatten();
+    for pair in rest.chunks(2) {
+        let (math, after) = (pair[0], pair.get(1).copied().unwrap_or(""));
+        let typeset = crate::syntax::parse_chain(math, &opts)
+            .ok()
+            .filter(|c| !c.links.is_empty())
+            .map(|c| chain_latex_in(&c, ctx))
+            .or_else(|| {
+                crate::syntax::parse_expr(math, &opts)
+                    .ok()
+                    .map(|e| expr_latex_in(&e, ctx))
+            });
+        match typeset {
+            Some(m) => {
+                if !words.is_empty() {
+                    out.push(Inline::Text(std::mem::take(&mut words)));
+                }
+                out.push(Inline::Math(m));
+            }
+            None => words.push_str(&format!("${math}$")),
+        }
+        words.push_str(after);
+    }
+    if let Some(u) = unclosed {
+        words.push('$');
+        words.push_str(u);
+    }
+    if !words.is_empty() {
+        out.push(Inline::Text(words));
+    }
+    out
+}
+
+/// What a derivation finds: the left sides of the claims `result [..]` names, or, with no
+/// `result`, those of its claims whose left side is one quantity (`I_G = …`), each once.
+fn sought(ast: &File, ctx: &Ctx) -> Vec<String> {
+    let stmts = || {
+        ast.items.iter().filter_map(|i| match i {
+            Item::Stmt(st) => Some(&st.kind),
+            _ => None,
+        })
+    };
+    let named: Vec<&str> = stmts()
+        .filter_map(|k| match k {
+            StmtKind::Result { labels } => Some(labels.iter().map(|l| l.name.as_str())),
+            _ => None,
+        })
+        .flatten()
+        .collect();
+    let mut out: Vec<String> = Vec::new();
+    for k in stmts() {
+        let StmtKind::Claim { label, chain, .. } = k else {
+            continue;
+        };
+        let wanted = if named.is_empty() {
+            matches!(chain.first.kind, ExprKind::Sym(_))
+        } else {
+            label
+                .as_ref()
+                .is_some_and(|l| named.contains(&l.name.as_str()))
+        };
+        let first = expr_latex_in(&chain.first, ctx);
+        if wanted && !out.contains(&first) {
+            out.push(first);
+        }
+    }
+    out
 }
 
 /// Equation numbers of a file's labelled givens, constraints and claims, in document
@@ -385,15 +494,16 @@ fn joined(base: &str, rel: &str) -> Option<String> {
 
 impl<'a> Builder<'a> {
     fn new(report: &'a FileReport, ast: &'a File, detail: Detail) -> Builder<'a> {
+        let ctx = Ctx::from_file(ast);
         Builder {
             steps: (detail == Detail::Steps).then(|| Steps::new(&report.env, ast)),
             report,
             ast,
-            ctx: Ctx::from_file(ast),
+            find: sought(ast, &ctx),
+            ctx,
             shown: vec![false; report.diagnostics.len()],
             blocks: Vec::new(),
             numbers: numbers_of(ast),
-            find: Vec::new(),
             place: None,
         }
     }
@@ -470,9 +580,6 @@ impl<'a> Builder<'a> {
                     }
                 }
                 Item::Stmt(stmt) if is_declaration(&stmt.kind) => {
-                    if let StmtKind::Unknowns { names } = &stmt.kind {
-                        self.find.extend(names.iter().map(|n| symbol(&n.name)));
-                    }
                     self.declaration(&stmt.kind, &mut decls);
                     decl_problems.extend(self.attach(stmt.span, false));
                 }
@@ -638,6 +745,7 @@ impl<'a> Builder<'a> {
     /// Ends a run of declarations: the "Given quantities" and "Find" sentences and their
     /// problems.
     fn finish_decls(&mut self, decls: &mut Vec<Inline>, problems: &mut Vec<Problem>) {
+        let declared = !decls.is_empty() || !problems.is_empty();
         if !decls.is_empty() {
             let mut p = vec![
                 Inline::Strong("Given quantities:".into()),
@@ -647,7 +755,7 @@ impl<'a> Builder<'a> {
             p.push(Inline::Text(".".into()));
             self.blocks.push(Block::Paragraph(p));
         }
-        if !self.find.is_empty() {
+        if declared && !self.find.is_empty() {
             let find = std::mem::take(&mut self.find);
             self.blocks.push(Block::Paragraph(vec![
                 Inline::Strong("Find:".into()),
@@ -857,7 +965,7 @@ impl<'a> Builder<'a> {
                     .or_else(|| self.report.link_status(link.span));
                 let flag = status.map_or(Some(Mark::NotChecked), mark);
                 let by = link.by.as_ref().map(|(by, _)| match by {
-                    By::Text(t) => Just::Text(t.clone()),
+                    By::Text(t) => Just::Text(words_and_math(t, &self.ctx)),
                     By::Labels(ls) => {
                         Just::Labels(ls.iter().map(|l| self.number(&l.name)).collect())
                     }
