@@ -157,7 +157,7 @@ fn block_latex(block: &Block, in_book: bool, out: &mut String) {
         Block::Claim { rows, tag } => {
             out.push_str("\\begin{align*}\n");
             for (k, row) in rows.iter().enumerate() {
-                super::solution::row_math(text, row, out);
+                super::solution::row_math(text, true, row, out);
                 if k == 0 {
                     if let Some(t) = tag {
                         out.push_str(&format!(" \\tag{{{}}}", text(t)));

@@ -209,7 +209,7 @@ pub(crate) fn display_latex(block: &Block, tags: bool) -> Option<String> {
         Block::Claim { rows, tag } => {
             out.push_str("\\begin{aligned}\n");
             for (k, row) in rows.iter().enumerate() {
-                super::solution::row_math(mathjax_text, row, &mut out);
+                super::solution::row_math(mathjax_text, false, row, &mut out);
                 if k + 1 < rows.len() {
                     out.push_str(" \\\\");
                 }

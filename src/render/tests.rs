@@ -1176,3 +1176,60 @@ fn the_sides_after_the_facts_are_typeset_in_a_failure_note() {
         "{inl:?}"
     );
 }
+
+#[test]
+fn the_widest_claims_break_across_lines_and_nothing_is_overfull() {
+    let sum = "a + b + c + d + e + f + g + h + k + m + n + p + q + r + s + t + u + v + w + z";
+    let squares = "a^2 + b^2 + c^2 + d^2 + e^2 + f^2 + g^2 + h^2 + k^2 + m^2 + n^2 + p^2 + q^2 + r^2 + s^2 + t^2 + u^2 + v^2 + w^2 + z^2";
+    let src = format!(
+        "# Wide\nsymbols a b c d e f g h k m n p q r s t u v w z > 0\n\
+         claim [w] ({sum})^2 = {squares} + 2 ({sum}) (a + b + c) - 2 (a + b + c)^2 + 2 (a b + a c + b c)\n\
+         claim [x] s = {squares} + {squares} by adding the squares of every quantity of the problem twice\n"
+    );
+    let report = crate::check_source(
+        "w.deriv",
+        &src,
+        &crate::Options::default(),
+        &crate::MemoryResolver::new(),
+    );
+    let tex = latex::document(&report);
+    assert!(tex.contains("\\lefteqn{"), "{tex}");
+    assert!(
+        tex.contains("\\right. \\\\\n&\\qquad {}\\left.{}+ "),
+        "{tex}"
+    );
+    compile("widest-claims", &tex);
+    // A bracket inside a fraction is never broken (a line break there is not what was
+    // meant).
+    let frac = format!(
+        "# Frac\nsymbols a b c d e f g h k m n p q r s t u v w z > 0\nclaim a = ({sum}) ({sum})/(b c d)\n"
+    );
+    let report = crate::check_source(
+        "f.deriv",
+        &frac,
+        &crate::Options::default(),
+        &crate::MemoryResolver::new(),
+    );
+    let tex = latex::document(&report);
+    assert!(!tex.contains("\\right."), "{tex}");
+}
+
+#[test]
+fn a_sum_breaks_before_its_outer_signs_only() {
+    use super::solution::break_sum;
+    let s = "a + \\left(b + c\\right) - d^{2} + e";
+    assert_eq!(break_sum(s, 100), vec![s.to_string()]);
+    let lines = break_sum(s, 8);
+    assert_eq!(lines.concat().replace(' ', ""), s.replace(' ', ""));
+    assert!(
+        lines
+            .iter()
+            .skip(1)
+            .all(|l| l.starts_with('+') || l.starts_with('-')),
+        "{lines:?}"
+    );
+    assert!(
+        lines.iter().any(|l| l.contains("\\left(b + c\\right)")),
+        "{lines:?}"
+    );
+}
