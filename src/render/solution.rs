@@ -604,8 +604,9 @@ pub(crate) fn words_and_math(t: &str, ctx: &Ctx) -> Vec<Inline> {
     out
 }
 
-/// What a derivation finds: the left sides of the claims `result [..]` names, or, with no
-/// `result`, those of its claims whose left side is one quantity (`I_G = …`), each once.
+/// What a derivation finds: the left sides of the claims `result [..]` names (the unknowns
+/// in a left side that combines several quantities), or, with no `result`, those of its
+/// claims whose left side is one quantity (`I_G = …`), each once.
 fn sought(ast: &File, ctx: &Ctx) -> Vec<String> {
     let stmts = || {
         ast.items.iter().filter_map(|i| match i {
@@ -620,24 +621,61 @@ fn sought(ast: &File, ctx: &Ctx) -> Vec<String> {
         })
         .flatten()
         .collect();
+    let unknowns: Vec<String> = stmts()
+        .filter_map(|k| match k {
+            StmtKind::Unknowns { names } => Some(names.iter().map(|n| n.name.clone())),
+            _ => None,
+        })
+        .flatten()
+        .collect();
     let mut out: Vec<String> = Vec::new();
     for k in stmts() {
         let StmtKind::Claim { label, chain, .. } = k else {
             continue;
         };
+        let one = matches!(chain.first.kind, ExprKind::Sym(_));
         let wanted = if named.is_empty() {
-            matches!(chain.first.kind, ExprKind::Sym(_))
+            one
         } else {
             label
                 .as_ref()
                 .is_some_and(|l| named.contains(&l.name.as_str()))
         };
-        let first = expr_latex_in(&chain.first, ctx);
-        if wanted && !out.contains(&first) {
-            out.push(first);
+        if !wanted {
+            continue;
+        }
+        // A result about a combination (`a b = k_G^2`) finds the unknowns it holds.
+        let mut found = Vec::new();
+        if !one {
+            syms(&chain.first, &mut found);
+            found.retain(|n| unknowns.contains(n));
+        }
+        let shown: Vec<String> = if found.is_empty() {
+            vec![expr_latex_in(&chain.first, ctx)]
+        } else {
+            found.iter().map(|n| symbol(n)).collect()
+        };
+        for f in shown {
+            if !out.contains(&f) {
+                out.push(f);
+            }
         }
     }
     out
+}
+
+/// The names of the symbols of `e`, each once, in the order written.
+fn syms(e: &crate::syntax::ast::Expr, out: &mut Vec<String>) {
+    match &e.kind {
+        ExprKind::Sym(n) if !out.contains(n) => out.push(n.clone()),
+        ExprKind::Neg(a) => syms(a, out),
+        ExprKind::Bin(_, a, b) => {
+            syms(a, out);
+            syms(b, out);
+        }
+        ExprKind::Call(_, args) => args.iter().for_each(|a| syms(a, out)),
+        _ => {}
+    }
 }
 
 /// Equation numbers of a file's labelled givens, constraints and claims, in document

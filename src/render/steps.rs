@@ -658,33 +658,23 @@ pub(crate) fn elimination(
     let latex = |s: &str| parsed(s).map(|e| expr_latex_in(&e, ctx));
     let prefix = line.map_or_else(String::new, |k| format!("Line {k}: "));
     let mut out = Vec::new();
-    if !w.solved.is_empty() {
-        let mut lines = Vec::new();
-        for s in &w.solved {
-            let mut l = Line::new(latex(&s.unknown)?, "=", latex(&s.value)?);
-            l.note
-                .push(Inline::Text(format!("from {}", cite(&s.fact, number))));
-            if let Some(d) = &s.divisor {
-                l.note.push(Inline::Text(", if ".into()));
-                l.note.push(Inline::Math(format!("{} \\neq 0", latex(d)?)));
-            }
-            lines.push(l);
+    // As a tutor says it: "From (4), θ̈ = …", one fact at a time.
+    for (k, s) in w.solved.iter().enumerate() {
+        let line = Line::new(latex(&s.unknown)?, "=", latex(&s.value)?);
+        let from = if k == 0 && !prefix.is_empty() {
+            format!("{prefix}from ")
+        } else {
+            "From ".to_string()
+        };
+        let mut lead = vec![Inline::Text(format!("{from}{}", cite(&s.fact, number)))];
+        if let Some(d) = &s.divisor {
+            lead.push(Inline::Text(", where ".into()));
+            lead.push(Inline::Math(format!("{} \\neq 0", latex(d)?)));
         }
-        let what = if w.solved.len() == 1 {
-            "the unknown"
-        } else {
-            "the unknowns in turn"
-        };
-        let verb = if prefix.is_empty() {
-            "Solving"
-        } else {
-            "solving"
-        };
+        lead.push(Inline::Text(":".into()));
         out.push(Work {
-            lead: vec![Inline::Text(format!(
-                "{prefix}{verb} the facts this step uses for {what}:"
-            ))],
-            lines,
+            lead,
+            lines: vec![line],
         });
     }
     match &w.multiple {
@@ -699,9 +689,13 @@ pub(crate) fn elimination(
             };
             let fact = cite(&m.fact, number);
             let lead = match (out.is_empty(), prefix.is_empty()) {
-                (false, _) => "Then the difference of the two sides vanishes by".to_string(),
-                (true, true) => "The difference of the two sides vanishes by".to_string(),
-                (true, false) => format!("{prefix}the difference of the two sides vanishes by"),
+                (false, _) => {
+                    "Substituting, the difference of the two sides is a multiple of".to_string()
+                }
+                (true, true) => "The difference of the two sides is a multiple of".to_string(),
+                (true, false) => {
+                    format!("{prefix}the difference of the two sides is a multiple of")
+                }
             };
             let zero = node(ExprKind::Num(num_traits::Zero::zero()));
             let mut lines = chain(expr_latex_in(&difference, ctx), &[product, zero], ctx);
@@ -709,7 +703,7 @@ pub(crate) fn elimination(
                 last.note.push(Inline::Text(format!("by {fact}")));
             }
             out.push(Work {
-                lead: vec![Inline::Text(format!("{lead} {fact}:"))],
+                lead: vec![Inline::Text(format!("{lead} {fact}, so it is zero:"))],
                 lines,
             });
         }
@@ -717,12 +711,12 @@ pub(crate) fn elimination(
             let (lhs, rhs) = (latex(&w.lhs)?, latex(&w.rhs)?);
             let (lead, line) = if op == RelOp::Eq && lhs == rhs {
                 (
-                    "Substituted, both sides are",
+                    "Substituting, both sides are",
                     Line::new(String::new(), "", lhs),
                 )
             } else {
                 (
-                    "Substituted, the step reads",
+                    "Substituting, the step reads",
                     Line::new(lhs, rel_latex(op), rhs),
                 )
             };

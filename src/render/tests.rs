@@ -612,14 +612,14 @@ fn steps_show_the_unknowns_solved_and_substituted() {
     );
     let tex = latex::document_with(&r, Detail::Steps);
     // [thdd]: theta'' solved from [MA] (equation 2), then both sides agree.
-    assert!(tex.contains("Line 1: solving the facts this step uses for the unknown:\n\\begin{align*}\n\\ddot{\\theta} &= -\\frac{3\\,g}{2 L} \\quad\\text{from (2)}\n\\end{align*}\n\\par\nSubstituted, both sides are\n"), "{tex}");
+    assert!(tex.contains("Line 1: from (2):\n\\begin{align*}\n\\ddot{\\theta} &= -\\frac{3\\,g}{2 L}\n\\end{align*}\n\\par\nSubstituting, both sides are\n"), "{tex}");
     // [faster]: two unknowns in turn, and the inequality once they are substituted.
     assert!(
-        tex.contains("\\ddot{y}_{B} &= L\\,\\ddot{\\theta} \\quad\\text{from (6)}"),
+        tex.contains("From (6):\n\\begin{align*}\n\\ddot{y}_{B} &= L\\,\\ddot{\\theta}\n"),
         "{tex}"
     );
     assert!(
-        tex.contains("Substituted, the step reads\n\\begin{align*}\n\\frac{3 g}{2} &> g\n"),
+        tex.contains("Substituting, the step reads\n\\begin{align*}\n\\frac{3 g}{2} &> g\n"),
         "{tex}"
     );
     // A constraint differentiated, cited by its equation number.
