@@ -1135,8 +1135,8 @@ fn find_names_what_the_derivation_finds_and_by_words_typeset_their_maths() {
         &crate::MemoryResolver::new(),
     );
     let md = markdown::document(&report);
-    // The result's quantity, not the unknowns F and N.
-    assert!(md.contains("**Find:** $\\frac{F}{m}$."), "{md}");
+    // The unknown of the result (a combination, F/m), not every unknown (N).
+    assert!(md.contains("**Find:** $F$."), "{md}");
     let tex = latex::document(&report);
     assert!(
         tex.contains("\\text{(by the balance along }x\\text{ with }F = m\\,g\\,\\sin\\beta\\text{, not \\$ alone)}"),
