@@ -40,7 +40,12 @@ impl Resolver for ClassResolver {
         for r in &self.allowed {
             match r.resolve(importer, path) {
                 Err(ImportError::OutsideRoot { .. }) => continue,
-                Ok(s) if self.reference.as_ref().is_some_and(|p| p.display().to_string() == s.id) => {
+                Ok(s)
+                    if self
+                        .reference
+                        .as_ref()
+                        .is_some_and(|p| p.display().to_string() == s.id) =>
+                {
                     return Err(refused())
                 }
                 other => return other,
@@ -113,7 +118,10 @@ fn class(paths: &[PathBuf], reference: &Path) -> Result<Vec<Entry>, String> {
         } else if p.exists() {
             found.push(Entry::Mark(p.clone()));
         } else {
-            return Err(format!("cannot read {}: no such file or folder", p.display()));
+            return Err(format!(
+                "cannot read {}: no such file or folder",
+                p.display()
+            ));
         }
         if found.len() == before {
             return Err(format!("{}: no `.deriv` file in it", p.display()));
@@ -203,13 +211,26 @@ pub fn mark(
             .collect(),
         reference: reference.canonicalize().ok(),
     };
+    let memo = rigor::mark::Memo::default();
     let rows = rigor::files::parallel(&entries, |e| match e {
-        Entry::Skip(p, why) => rigor::mark::unreadable(&p.display().to_string(), why.clone(), &expected),
-        Entry::Mark(p) => mark_one(p, (&ref_report, &expected), &sub_options, (&ref_resolver, &sub_resolver)),
+        Entry::Skip(p, why) => {
+            rigor::mark::unreadable(&p.display().to_string(), why.clone(), &expected)
+        }
+        Entry::Mark(p) => mark_one(
+            p,
+            (&ref_report, &expected),
+            &sub_options,
+            (&ref_resolver, &sub_resolver),
+            &memo,
+        ),
     });
     print_rows(&rows, reports.summary, format);
     match reports.feedback {
-        Some(dir) => write_feedback(dir, &rows, reports.reveal.then_some(ref_report.source.as_str())),
+        Some(dir) => write_feedback(
+            dir,
+            &rows,
+            reports.reveal.then_some(ref_report.source.as_str()),
+        ),
         None => 0,
     }
 }
@@ -220,11 +241,19 @@ fn mark_one(
     (reference, expected): (&rigor::FileReport, &[Expected]),
     options: &Options,
     resolvers: (&dyn Resolver, &dyn Resolver),
+    memo: &rigor::mark::Memo,
 ) -> Row {
     let name = path.display().to_string();
     match rigor::files::read(path, options.max_file_size) {
         Err(e) => rigor::mark::unreadable(&name, e, expected),
-        Ok(text) => rigor::mark::mark(reference, expected, (&name, &text), options, resolvers),
+        Ok(text) => rigor::mark::mark(
+            reference,
+            expected,
+            (&name, &text),
+            options,
+            resolvers,
+            memo,
+        ),
     }
 }
 

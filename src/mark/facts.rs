@@ -144,7 +144,11 @@ pub fn collect(sub: &FileReport, ref_names: &[String]) -> Vec<Fact> {
         };
         match &st.kind {
             StmtKind::Given { label, chain } => {
-                out.push(fact(FactKind::Given, label.as_ref().map(|l| l.name.clone()), relations(chain)));
+                out.push(fact(
+                    FactKind::Given,
+                    label.as_ref().map(|l| l.name.clone()),
+                    relations(chain),
+                ));
             }
             StmtKind::Constraint { label, chain } => out.push(fact(
                 FactKind::Constraint,
@@ -163,7 +167,11 @@ pub fn collect(sub: &FileReport, ref_names: &[String]) -> Vec<Fact> {
                         (sym, "=", a.value.clone())
                     })
                     .collect();
-                out.push(fact(FactKind::Where, label.as_ref().map(|l| l.name.clone()), rel));
+                out.push(fact(
+                    FactKind::Where,
+                    label.as_ref().map(|l| l.name.clone()),
+                    rel,
+                ));
             }
             StmtKind::Use { labels, .. } => {
                 let refused = error_lines
@@ -305,17 +313,19 @@ fn written_cites(link: &Link) -> Vec<Cite> {
 /// The relations of `fact` in the reference's terms, printed (`lhs op rhs`). The name a
 /// `let` or `where` gives a value keeps its meaning in the reference (`I_A = …` says
 /// what the student took `I_A` to be).
-pub(crate) fn in_terms(fact: &Fact, terms: &Terms) -> Vec<String> {
+pub(crate) fn in_terms(fact: &Fact, terms: &Terms) -> Vec<(String, Vec<String>)> {
     let named = matches!(fact.kind, FactKind::Let | FactKind::Where);
     fact.relations
         .iter()
         .map(|(a, op, b)| {
-            let a = if named {
-                print::source(&terms.named(a))
-            } else {
-                terms.print(a)
-            };
-            format!("{a} {op} {}", terms.print(b))
+            let a = if named { terms.named(a) } else { terms.expr(a) };
+            let b = terms.expr(b);
+            let mut names = names::names_in(&a);
+            names.extend(names::names_in(&b));
+            (
+                format!("{} {op} {}", print::source(&a), print::source(&b)),
+                names,
+            )
         })
         .collect()
 }

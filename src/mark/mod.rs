@@ -16,7 +16,8 @@ use crate::diag::{line_col, Diagnostic};
 use crate::diag::{Code, FailureKind, Mistake};
 use crate::syntax::ast::{Chain, Item, StmtKind};
 use crate::syntax::print;
-use compare::{Batch, Checked};
+pub use compare::Memo;
+use compare::{Batch, Checked, Slot};
 use facts::{ClaimAt, Fact, FactKind, Standing};
 pub use names::Mapped;
 use names::Terms;
@@ -292,16 +293,32 @@ pub fn unreadable(name: &str, why: String, expected: &[Expected]) -> Row {
     }
 }
 
+/// A labelled given or constraint of the reference.
+struct RefFact {
+    label: String,
+    /// The names it uses (primes dropped).
+    names: Vec<String>,
+}
+
 /// The labelled givens and constraints of the reference: a submission's facts are
 /// compared with them one at a time.
-fn fact_labels(r: &FileReport) -> Vec<String> {
+fn ref_facts(r: &FileReport) -> Vec<RefFact> {
     let mut out = Vec::new();
     for item in r.ast.iter().flat_map(|a| &a.items) {
         if let Item::Stmt(st) = item {
-            if let StmtKind::Given { label: Some(l), .. }
-            | StmtKind::Constraint { label: Some(l), .. } = &st.kind
+            if let StmtKind::Given {
+                label: Some(l),
+                chain,
+            }
+            | StmtKind::Constraint {
+                label: Some(l),
+                chain,
+            } = &st.kind
             {
-                out.push(l.name.clone());
+                out.push(RefFact {
+                    label: l.name.clone(),
+                    names: chain.exprs().flat_map(names::names_in).collect(),
+                });
             }
         }
     }
@@ -328,9 +345,9 @@ fn variants(base: &[Mapped]) -> Vec<Vec<Mapped>> {
 struct Candidate {
     /// Index into the submission's claims.
     claim: usize,
-    /// The line of its comparison appended to the reference; `None` when its value uses
+    /// Its comparison with the reference's result; `None` when its value uses
     /// quantities the result's value may not.
-    line: Option<usize>,
+    line: Option<Slot>,
     /// The submission's names in the side that names the quantity.
     names: Vec<String>,
 }
@@ -338,8 +355,8 @@ struct Candidate {
 /// What one mapping appended to the batch.
 struct Plan {
     terms: Terms,
-    /// Per fact, per relation: the lines of its comparisons, one per reference fact.
-    facts: Vec<Vec<Vec<usize>>>,
+    /// Per fact, per relation: its comparisons, one per reference fact that could imply it.
+    facts: Vec<Vec<Vec<Slot>>>,
     /// Per expected result, the submission's claims about it, in order.
     results: Vec<Vec<Candidate>>,
 }
@@ -348,7 +365,12 @@ struct Plan {
 /// (`x'' = …` or `… = x''`, `P = …` for `F` when `P → −F`), each compared (when its
 /// other side is an answer: no quantity the reference's value does without) by the
 /// claim `quantity = value by [label]` appended to the reference.
-fn candidates(e: &Expected, terms: &Terms, claims: &[ClaimAt<'_>], batch: &mut Batch) -> Vec<Candidate> {
+fn candidates(
+    e: &Expected,
+    terms: &Terms,
+    claims: &[ClaimAt<'_>],
+    batch: &mut Batch<'_>,
+) -> Vec<Candidate> {
     let mut out = Vec::new();
     for (k, c) in claims.iter().enumerate() {
         let last = c.chain.links.last().map_or(&c.chain.first, |l| &l.rhs);
@@ -383,11 +405,11 @@ fn candidates(e: &Expected, terms: &Terms, claims: &[ClaimAt<'_>], batch: &mut B
 /// Appends, for `map`, each relation of each fact still in question compared with each
 /// of the reference's facts alone, and each claim about a result.
 fn plan(
-    batch: &mut Batch,
+    batch: &mut Batch<'_>,
     map: Vec<Mapped>,
     (claims, facts): (&[ClaimAt<'_>], &[Fact]),
     expected: &[Expected],
-    ref_labels: &[String],
+    (ref_facts, ref_dynamic): (&[RefFact], &[String]),
     sub: &FileReport,
 ) -> Plan {
     let terms = Terms::new(sub, &map);
@@ -399,10 +421,15 @@ fn plan(
             }
             facts::in_terms(f, &terms)
                 .iter()
-                .map(|rel| {
-                    ref_labels
+                .map(|(rel, names)| {
+                    // A fact about a quantity the reference's fact does not mention
+                    // cannot follow from it alone.
+                    let dynamic: Vec<&String> =
+                        names.iter().filter(|n| ref_dynamic.contains(n)).collect();
+                    ref_facts
                         .iter()
-                        .map(|l| batch.claim(&format!("{rel} by [{l}]")))
+                        .filter(|r| dynamic.iter().all(|n| r.names.contains(n)))
+                        .map(|r| batch.claim(&format!("{rel} by [{}]", r.label)))
                         .collect()
                 })
                 .collect()
@@ -423,7 +450,7 @@ fn plan(
 /// of its relations from one of them.
 fn implied(p: &Plan, i: usize, checked: &Checked) -> bool {
     let rels = &p.facts[i];
-    !rels.is_empty() && rels.iter().all(|r| r.iter().any(|&l| checked.verified(l)))
+    !rels.is_empty() && rels.iter().all(|r| r.iter().any(|s| checked.verified(s)))
 }
 
 /// Marks one submission (`name`, `text`) against the checked reference.
@@ -433,18 +460,33 @@ pub fn mark(
     (name, text_of): (&str, &str),
     opts: &Options,
     resolvers: (&dyn Resolver, &dyn Resolver),
+    memo: &Memo,
 ) -> Row {
     let sub = check_source(name, text_of, opts, resolvers.1);
+    let dynamic = dynamic_names(reference);
     let claims = facts::claims(&sub);
     let mut facts = facts::collect(&sub, &names::declared(reference));
-    let labels = fact_labels(reference);
-    let mut batch = Batch::new(reference);
+    let refs = ref_facts(reference);
+    let mut batch = Batch::new(reference, memo);
     let plans: Vec<Plan> = variants(&names::role_pairs(reference, &sub))
         .into_iter()
-        .map(|v| plan(&mut batch, v, (&claims, &facts), expected, &labels, &sub))
+        .map(|v| {
+            plan(
+                &mut batch,
+                v,
+                (&claims, &facts),
+                expected,
+                (&refs, &dynamic),
+                &sub,
+            )
+        })
         .collect();
     let checked = batch.run(&reference.path, opts, resolvers.0);
-    let score = |p: &Plan| (0..facts.len()).filter(|&i| implied(p, i, &checked)).count();
+    let score = |p: &Plan| {
+        (0..facts.len())
+            .filter(|&i| implied(p, i, &checked))
+            .count()
+    };
     let best = (0..plans.len())
         .max_by_key(|&k| (score(&plans[k]), std::cmp::Reverse(k)))
         .unwrap_or(0);
@@ -518,7 +560,11 @@ fn result(
     };
     let Some(last) = cands.last() else {
         // A claim with the reference's label about something else: never called right.
-        return match claims.iter().rev().find(|c| c.label == Some(e.label.as_str())) {
+        return match claims
+            .iter()
+            .rev()
+            .find(|c| c.label == Some(e.label.as_str()))
+        {
             Some(c) => mark(
                 Outcome::Undecided(format!(
                     "your [{}] does not state {} on one side",
@@ -530,8 +576,8 @@ fn result(
             None => mark(Outcome::Missing, None, Vec::new()),
         };
     };
-    let compared = |c: &Candidate| match c.line {
-        Some(l) => checked.outcome(l),
+    let compared = |c: &Candidate| match &c.line {
+        Some(s) => checked.outcome(s),
         None => Outcome::Undecided(
             "it is not yet written in the problem's given quantities alone".into(),
         ),

@@ -3,6 +3,7 @@
 //! their names and text are escaped wherever they appear.
 
 use crate::check::Status;
+use crate::diag::Mistake;
 use crate::mark::facts::{FactKind, Standing};
 use crate::mark::{Outcome, ResultMark, Row, Why};
 use serde_json::json;
@@ -52,7 +53,10 @@ fn earlier(r: &ResultMark) -> Option<String> {
         [l] => Some(format!("an earlier claim, line {l}, says otherwise")),
         ls => Some(format!(
             "earlier claims, lines {}, say otherwise",
-            ls.iter().map(ToString::to_string).collect::<Vec<_>>().join(", ")
+            ls.iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
         )),
     }
 }
@@ -69,7 +73,9 @@ fn own_fact(f: &crate::mark::facts::Fact) -> String {
     let standing = match f.standing {
         Standing::Own => "your own assumption: the problem does not give it",
         Standing::Contradiction => "contradicts your other facts",
-        Standing::ImportFailed => "imported nothing: a submission may import only the course library's verified results",
+        Standing::ImportFailed => {
+            "imported nothing: a submission may import only the course library's verified results"
+        }
         Standing::Problem => "the problem's",
     };
     format!("{what}: {standing}")
@@ -349,19 +355,17 @@ fn fenced(s: &str) -> String {
         .replace("```", "'''")
 }
 
-/// The term a diagnostic points at, as written, when it points inside a relation rather
-/// than at the whole of it.
+/// The term a sign mistake is about, as the checker names it under the spot (the first
+/// `…` of its label; for display only: the kind was decided from [`Mistake`]).
 fn pointed_term(r: &Row) -> Option<String> {
     let f = r.first_failure.as_ref()?;
-    let rep = r.report.as_ref()?;
-    let (span, _) = f.diagnostic.primary.as_ref()?;
-    let t = rep.source.get(span.start..span.end)?.trim();
-    let whole = rep
-        .claims
-        .iter()
-        .flat_map(|c| &c.links)
-        .any(|l| l.span == *span);
-    (!whole && !t.is_empty() && !t.contains(['=', '<', '>'])).then(|| t.to_string())
+    if f.diagnostic.mistake != Some(Mistake::Sign) {
+        return None;
+    }
+    let (_, label) = f.diagnostic.primary.as_ref()?;
+    let mut parts = label.split('`').skip(1);
+    let term = parts.next()?;
+    parts.next().map(|_| term.to_string())
 }
 
 /// The steps of a submission, one line each.
