@@ -49,9 +49,22 @@ pub(crate) struct Batch<'m> {
 }
 
 impl<'m> Batch<'m> {
-    /// The reference's text, nothing appended yet.
-    pub(crate) fn new(reference: &FileReport, memo: &'m Memo) -> Batch<'m> {
-        let source = format!("{}\n", reference.source);
+    /// The reference's text with `labels` inserted (at byte offsets: unlabelled facts
+    /// named, so that a comparison can cite them), nothing appended yet.
+    pub(crate) fn new(
+        reference: &FileReport,
+        labels: &[(usize, String)],
+        memo: &'m Memo,
+    ) -> Batch<'m> {
+        let mut source = reference.source.clone();
+        let mut at: Vec<&(usize, String)> = labels.iter().collect();
+        at.sort_by(|a, b| b.0.cmp(&a.0));
+        for (k, l) in at {
+            if source.is_char_boundary(*k) {
+                source.insert_str(*k, l);
+            }
+        }
+        source.push('\n');
         Batch {
             next_line: source.lines().count() + 1,
             source,

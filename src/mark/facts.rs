@@ -159,7 +159,7 @@ pub fn collect(sub: &FileReport, ref_names: &[String]) -> Vec<Fact> {
                 let sym = Expr::new(ExprKind::Sym(name.name.clone()), name.span);
                 out.push(fact(FactKind::Let, None, vec![(sym, "=", value.clone())]));
             }
-            StmtKind::Claim { label, where_, .. } if !where_.is_empty() => {
+            StmtKind::Claim { where_, .. } if !where_.is_empty() => {
                 let rel = where_
                     .iter()
                     .map(|a| {
@@ -167,11 +167,7 @@ pub fn collect(sub: &FileReport, ref_names: &[String]) -> Vec<Fact> {
                         (sym, "=", a.value.clone())
                     })
                     .collect();
-                out.push(fact(
-                    FactKind::Where,
-                    label.as_ref().map(|l| l.name.clone()),
-                    rel,
-                ));
+                out.push(fact(FactKind::Where, None, rel));
             }
             StmtKind::Use { labels, .. } => {
                 let refused = error_lines

@@ -293,34 +293,50 @@ pub fn unreadable(name: &str, why: String, expected: &[Expected]) -> Row {
     }
 }
 
-/// A labelled given or constraint of the reference.
+/// A given or constraint of the reference.
 struct RefFact {
+    /// Its label; an unlabelled one is given `ref_line_N` (its line) for the comparisons.
     label: String,
     /// The names it uses (primes dropped).
     names: Vec<String>,
+    /// Where the made-up label goes in the reference's text, for an unlabelled one.
+    insert_at: Option<usize>,
 }
 
-/// The labelled givens and constraints of the reference: a submission's facts are
-/// compared with them one at a time.
+/// The givens and constraints of the reference: a submission's facts are compared with
+/// them one at a time.
 fn ref_facts(r: &FileReport) -> Vec<RefFact> {
+    let idx = crate::diag::LineIndex::new(&r.source);
     let mut out = Vec::new();
     for item in r.ast.iter().flat_map(|a| &a.items) {
-        if let Item::Stmt(st) = item {
-            if let StmtKind::Given {
-                label: Some(l),
-                chain,
-            }
-            | StmtKind::Constraint {
-                label: Some(l),
-                chain,
-            } = &st.kind
+        let Item::Stmt(st) = item else { continue };
+        let (label, chain, keyword) = match &st.kind {
+            StmtKind::Given { label, chain } => (label, chain, "given"),
+            StmtKind::Constraint { label, chain } => (label, chain, "constraint"),
+            _ => continue,
+        };
+        let names = chain.exprs().flat_map(names::names_in).collect();
+        let fact = match label {
+            Some(l) => RefFact {
+                label: l.name.clone(),
+                names,
+                insert_at: None,
+            },
+            // Only where the statement starts with its keyword, as written.
+            None if r
+                .source
+                .get(st.span.start..)
+                .is_some_and(|t| t.starts_with(keyword)) =>
             {
-                out.push(RefFact {
-                    label: l.name.clone(),
-                    names: chain.exprs().flat_map(names::names_in).collect(),
-                });
+                RefFact {
+                    label: format!("ref_line_{}", idx.line_col(st.span.start).0),
+                    names,
+                    insert_at: Some(st.span.start + keyword.len()),
+                }
             }
-        }
+            None => continue,
+        };
+        out.push(fact);
     }
     out
 }
@@ -467,7 +483,11 @@ pub fn mark(
     let claims = facts::claims(&sub);
     let mut facts = facts::collect(&sub, &names::declared(reference));
     let refs = ref_facts(reference);
-    let mut batch = Batch::new(reference, memo);
+    let labels: Vec<(usize, String)> = refs
+        .iter()
+        .filter_map(|r| Some((r.insert_at?, format!(" [{}]", r.label))))
+        .collect();
+    let mut batch = Batch::new(reference, &labels, memo);
     let plans: Vec<Plan> = variants(&names::role_pairs(reference, &sub))
         .into_iter()
         .map(|v| {

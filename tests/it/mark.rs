@@ -596,3 +596,26 @@ fn feedback_says_as_much_as_check() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_reference_whose_facts_are_unlabelled_still_tells_the_problems_facts_from_the_students() {
+    let (out, err, code) = mark(&[
+        "--reference",
+        "tests/mark/reference_unlabelled.deriv",
+        "tests/mark/class/01_correct.deriv",
+        "tests/mark/fair/06_facts_rearranged.deriv",
+        "tests/mark/gaming/03_answer_as_given.deriv",
+        "--format",
+        "csv",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let rows: Vec<&str> = out.lines().skip(1).collect();
+    assert!(rows[0].ends_with(",2,2,,,2,2,"), "{out}");
+    assert!(rows[1].ends_with(",2,2,,,2,2,"), "{out}");
+    assert!(
+        rows[2].contains(
+            ",2,2,,,0,2,\"[xdd] not credited: rests on your own assumption [ans], line 9"
+        ),
+        "{out}"
+    );
+}
