@@ -341,20 +341,103 @@ fn ref_facts(r: &FileReport) -> Vec<RefFact> {
     out
 }
 
-/// The mappings tried, in order of preference: the role pairs as found, each with one
-/// name's sign turned (a force drawn the other way), and no mapping at all.
-fn variants(base: &[Mapped]) -> Vec<Vec<Mapped>> {
+/// The mappings tried first: the role pairs as found, and no mapping at all.
+fn first_variants(base: &[Mapped]) -> Vec<Vec<Mapped>> {
     if base.is_empty() {
-        return vec![Vec::new()];
+        vec![Vec::new()]
+    } else {
+        vec![base.to_vec(), Vec::new()]
     }
-    let mut out = vec![base.to_vec()];
-    for k in 0..base.len() {
-        let mut v = base.to_vec();
-        v[k].negated = true;
-        out.push(v);
+}
+
+/// The mappings tried when some facts are still not the problem's: `best` with the sign
+/// of one, or of two, of the submission's names for the reference's moving quantities
+/// and unknowns turned (`P → −F`: friction drawn the other way; `s → −x` and `phi →
+/// −theta` together: positions measured down the slope). A name the submission shares
+/// with the reference may be turned too (`F → −F`).
+fn flipped_variants(best: &[Mapped], sub_names: &[String], dynamic: &[String]) -> Vec<Vec<Mapped>> {
+    let mut names: Vec<Mapped> = best.to_vec();
+    for n in dynamic {
+        let taken = best.iter().any(|m| &m.from == n || &m.to == n);
+        if !taken && sub_names.contains(n) {
+            names.push(Mapped {
+                from: n.clone(),
+                to: n.clone(),
+                negated: false,
+            });
+        }
     }
-    out.push(Vec::new());
+    let flippable: Vec<usize> = (0..names.len())
+        .filter(|&k| dynamic.contains(&names[k].to))
+        .collect();
+    let turned = |ks: &[usize]| -> Vec<Mapped> {
+        let mut v = names.clone();
+        for &k in ks {
+            v[k].negated = !v[k].negated;
+        }
+        v.retain(|m| m.from != m.to || m.negated);
+        v
+    };
+    let mut out: Vec<Vec<Mapped>> = flippable.iter().map(|&k| turned(&[k])).collect();
+    if flippable.len() <= 4 {
+        for (i, &a) in flippable.iter().enumerate() {
+            for &b in &flippable[i + 1..] {
+                out.push(turned(&[a, b]));
+            }
+        }
+    }
     out
+}
+
+/// What a submission is marked with: the reference, its facts and results, the
+/// submission's claims and facts, and how the comparisons are checked.
+struct Ctx<'a> {
+    reference: &'a FileReport,
+    expected: &'a [Expected],
+    sub: &'a FileReport,
+    claims: &'a [ClaimAt<'a>],
+    facts: &'a [Fact],
+    refs: &'a [RefFact],
+    dynamic: &'a [String],
+    opts: &'a Options,
+    resolver: &'a dyn Resolver,
+    memo: &'a Memo,
+}
+
+/// The mappings `variants`, each planned, all checked in one batch; the best one (the
+/// most facts the problem's; the earlier on a tie) with its score.
+fn best_of(cx: &Ctx<'_>, variants: Vec<Vec<Mapped>>) -> (Plan, Checked, usize) {
+    let labels: Vec<(usize, String)> = cx
+        .refs
+        .iter()
+        .filter_map(|r| Some((r.insert_at?, format!(" [{}]", r.label))))
+        .collect();
+    let mut batch = Batch::new(cx.reference, &labels, cx.memo);
+    let mut plans: Vec<Plan> = variants
+        .into_iter()
+        .map(|v| {
+            plan(
+                &mut batch,
+                v,
+                (cx.claims, cx.facts),
+                cx.expected,
+                (cx.refs, cx.dynamic),
+                cx.sub,
+            )
+        })
+        .collect();
+    let checked = batch.run(&cx.reference.path, cx.opts, cx.resolver);
+    let score = |p: &Plan| {
+        (0..cx.facts.len())
+            .filter(|&i| implied(p, i, &checked))
+            .count()
+    };
+    let best = (0..plans.len())
+        .max_by_key(|&k| (score(&plans[k]), std::cmp::Reverse(k)))
+        .unwrap_or(0);
+    let plan = plans.swap_remove(best);
+    let n = score(&plan);
+    (plan, checked, n)
 }
 
 /// A claim of the submission about an expected result.
@@ -483,34 +566,35 @@ pub fn mark(
     let claims = facts::claims(&sub);
     let mut facts = facts::collect(&sub, &names::declared(reference));
     let refs = ref_facts(reference);
-    let labels: Vec<(usize, String)> = refs
-        .iter()
-        .filter_map(|r| Some((r.insert_at?, format!(" [{}]", r.label))))
-        .collect();
-    let mut batch = Batch::new(reference, &labels, memo);
-    let plans: Vec<Plan> = variants(&names::role_pairs(reference, &sub))
-        .into_iter()
-        .map(|v| {
-            plan(
-                &mut batch,
-                v,
-                (&claims, &facts),
-                expected,
-                (&refs, &dynamic),
-                &sub,
-            )
-        })
-        .collect();
-    let checked = batch.run(&reference.path, opts, resolvers.0);
-    let score = |p: &Plan| {
-        (0..facts.len())
-            .filter(|&i| implied(p, i, &checked))
-            .count()
+    let (plan, checked) = {
+        let cx = Ctx {
+            reference,
+            expected,
+            sub: &sub,
+            claims: &claims,
+            facts: &facts,
+            refs: &refs,
+            dynamic: &dynamic,
+            opts,
+            resolver: resolvers.0,
+            memo,
+        };
+        let base = names::role_pairs(reference, &sub);
+        let (plan, checked, score) = best_of(&cx, first_variants(&base));
+        let open = facts.iter().filter(|f| f.standing == Standing::Own).count();
+        if score < open {
+            let flips = flipped_variants(plan.terms.map(), &names::declared(&sub), &dynamic);
+            let (p2, c2, s2) = best_of(&cx, flips);
+            if s2 > score {
+                (p2, c2)
+            } else {
+                (plan, checked)
+            }
+        } else {
+            (plan, checked)
+        }
     };
-    let best = (0..plans.len())
-        .max_by_key(|&k| (score(&plans[k]), std::cmp::Reverse(k)))
-        .unwrap_or(0);
-    let plan = &plans[best];
+    let plan = &plan;
     for (i, f) in facts.iter_mut().enumerate() {
         if implied(plan, i, &checked) {
             f.standing = Standing::Problem;

@@ -460,20 +460,27 @@ fn the_last_claim_about_a_result_is_marked_and_earlier_ones_that_disagree_are_sa
 #[test]
 fn correct_work_in_fair_forms_is_credited() {
     let r = rows(&["tests/mark/fair"], &[]);
-    assert_eq!(r.len(), 6, "{r:?}");
-    for row in &r[..4] {
-        assert!(row.ends_with(",2,2,,,2,2,"), "{row}");
+    assert_eq!(r.len(), 8, "{r:?}");
+    for (k, row) in r.iter().enumerate() {
+        if k == 4 {
+            assert!(
+                row.ends_with("05_corrected.deriv,2,3,9,factor,2,2,"),
+                "{row}"
+            );
+        } else {
+            assert!(row.ends_with(",2,2,,,2,2,"), "{row}");
+        }
     }
+    // Positions measured down the slope: two signs turned at once.
+    let out = human("tests/mark/fair/07_down_the_slope.deriv", &[]);
     assert!(
-        r[4].ends_with("05_corrected.deriv,2,3,9,factor,2,2,"),
-        "{}",
-        r[4]
+        out.contains("names matched by role: P → F, s → −x, phi → −theta\n"),
+        "{out}"
     );
-    assert!(
-        r[5].ends_with("06_facts_rearranged.deriv,2,2,,,2,2,"),
-        "{}",
-        r[5]
-    );
+    // Friction drawn the other way under the reference's own name.
+    let out = human("tests/mark/fair/08_same_name_other_way.deriv", &[]);
+    assert!(out.contains("names matched by role: F → −F\n"), "{out}");
+    assert!(out.contains("results 2/2 right"), "{out}");
     // Partial renaming, the moment equation first, labels of the student's own.
     let out = human("tests/mark/fair/03_partial_renaming.deriv", &[]);
     assert!(
