@@ -266,7 +266,7 @@ fn human(path: &str, extra: &[&str]) -> String {
 #[test]
 fn results_resting_on_the_students_own_givens_earn_nothing_and_say_why() {
     let r = rows(&["tests/mark/gaming"], &[]);
-    assert_eq!(r.len(), 10, "{r:?}");
+    assert_eq!(r.len(), 11, "{r:?}");
     // The results stated as givens; the answer added as a given; a wrong moment of
     // inertia rescued by `g sin(beta) = 0`; the unknown defined as the answer: every
     // step verifies, and not one result is credited.
@@ -623,6 +623,16 @@ fn a_reference_whose_facts_are_unlabelled_still_tells_the_problems_facts_from_th
         rows[2].contains(
             ",2,2,,,0,2,\"[xdd] not credited: rests on your own assumption [ans], line 9"
         ),
+        "{out}"
+    );
+}
+
+#[test]
+fn a_role_no_fact_of_the_problem_justifies_is_said_not_claimed() {
+    let out = human("tests/mark/gaming/11_unjustified_name.deriv", &[]);
+    assert!(!out.contains("names matched by role"), "{out}");
+    assert!(
+        out.contains("  names no fact of the problem matches: phi\n"),
         "{out}"
     );
 }
