@@ -58,7 +58,7 @@ impl<'m> Batch<'m> {
     ) -> Batch<'m> {
         let mut source = reference.source.clone();
         let mut at: Vec<&(usize, String)> = labels.iter().collect();
-        at.sort_by(|a, b| b.0.cmp(&a.0));
+        at.sort_by_key(|l| std::cmp::Reverse(l.0));
         for (k, l) in at {
             if source.is_char_boundary(*k) {
                 source.insert_str(*k, l);
