@@ -399,6 +399,7 @@ struct Ctx<'a> {
     facts: &'a [Fact],
     refs: &'a [RefFact],
     dynamic: &'a [String],
+    known: &'a [String],
     opts: &'a Options,
     resolver: &'a dyn Resolver,
     memo: &'a Memo,
@@ -421,7 +422,7 @@ fn best_of(cx: &Ctx<'_>, variants: Vec<Vec<Mapped>>) -> (Plan, Checked, usize) {
                 v,
                 (cx.claims, cx.facts),
                 cx.expected,
-                (cx.refs, cx.dynamic),
+                (cx.refs, cx.dynamic, cx.known),
                 cx.sub,
             )
         })
@@ -449,6 +450,9 @@ struct Candidate {
     line: Option<Slot>,
     /// The submission's names in the side that names the quantity.
     names: Vec<String>,
+    /// Names of its value, in the reference's terms, that the reference does not have
+    /// (it is not compared then).
+    foreign: Vec<String>,
 }
 
 /// What one mapping appended to the batch.
@@ -466,7 +470,7 @@ struct Plan {
 /// claim `quantity = value by [label]` appended to the reference.
 fn candidates(
     e: &Expected,
-    terms: &Terms,
+    (terms, known): (&Terms, &[String]),
     claims: &[ClaimAt<'_>],
     batch: &mut Batch<'_>,
 ) -> Vec<Candidate> {
@@ -481,9 +485,13 @@ fn candidates(
             continue;
         };
         let value = terms.expr(value);
-        let answer = !names::names_in(&value)
+        let in_value = names::names_in(&value);
+        let foreign: Vec<String> = in_value
             .iter()
-            .any(|n| e.not_in_value.contains(n));
+            .filter(|n| !known.contains(n))
+            .cloned()
+            .collect();
+        let answer = foreign.is_empty() && !in_value.iter().any(|n| e.not_in_value.contains(n));
         let line = answer.then(|| {
             batch.claim(&format!(
                 "{} = {} by [{}]",
@@ -496,6 +504,7 @@ fn candidates(
             claim: k,
             line,
             names: names::names_in(side),
+            foreign,
         });
     }
     out
@@ -508,7 +517,7 @@ fn plan(
     map: Vec<Mapped>,
     (claims, facts): (&[ClaimAt<'_>], &[Fact]),
     expected: &[Expected],
-    (ref_facts, ref_dynamic): (&[RefFact], &[String]),
+    (ref_facts, ref_dynamic, known): (&[RefFact], &[String], &[String]),
     sub: &FileReport,
 ) -> Plan {
     let terms = Terms::new(sub, &map);
@@ -521,8 +530,12 @@ fn plan(
             facts::in_terms(f, &terms)
                 .iter()
                 .map(|(rel, names)| {
-                    // A fact about a quantity the reference's fact does not mention
-                    // cannot follow from it alone.
+                    // A fact with a name the reference does not have, or about a
+                    // quantity the reference's fact does not mention, cannot follow
+                    // from it alone.
+                    if names.iter().any(|n| !known.contains(n)) {
+                        return Vec::new();
+                    }
                     let dynamic: Vec<&String> =
                         names.iter().filter(|n| ref_dynamic.contains(n)).collect();
                     ref_facts
@@ -536,7 +549,7 @@ fn plan(
         .collect();
     let results = expected
         .iter()
-        .map(|e| candidates(e, &terms, claims, batch))
+        .map(|e| candidates(e, (&terms, known), claims, batch))
         .collect();
     Plan {
         terms,
@@ -564,7 +577,8 @@ pub fn mark(
     let sub = check_source(name, text_of, opts, resolvers.1);
     let dynamic = dynamic_names(reference);
     let claims = facts::claims(&sub);
-    let mut facts = facts::collect(&sub, &names::declared(reference));
+    let known = names::declared(reference);
+    let mut facts = facts::collect(&sub, &known);
     let refs = ref_facts(reference);
     let (plan, checked) = {
         let cx = Ctx {
@@ -575,6 +589,7 @@ pub fn mark(
             facts: &facts,
             refs: &refs,
             dynamic: &dynamic,
+            known: &known,
             opts,
             resolver: resolvers.0,
             memo,
@@ -682,6 +697,10 @@ fn result(
     };
     let compared = |c: &Candidate| match &c.line {
         Some(s) => checked.outcome(s),
+        None if !c.foreign.is_empty() => Outcome::Undecided(format!(
+            "it uses names the problem does not have: {}",
+            c.foreign.join(", ")
+        )),
         None => Outcome::Undecided(
             "it is not yet written in the problem's given quantities alone".into(),
         ),
