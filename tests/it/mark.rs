@@ -460,7 +460,7 @@ fn the_last_claim_about_a_result_is_marked_and_earlier_ones_that_disagree_are_sa
 #[test]
 fn correct_work_in_fair_forms_is_credited() {
     let r = rows(&["tests/mark/fair"], &[]);
-    assert_eq!(r.len(), 8, "{r:?}");
+    assert_eq!(r.len(), 10, "{r:?}");
     for (k, row) in r.iter().enumerate() {
         if k == 4 {
             assert!(
@@ -477,6 +477,13 @@ fn correct_work_in_fair_forms_is_credited() {
         out.contains("names matched by role: P → F, s → −x, phi → −theta\n"),
         "{out}"
     );
+    // A fact of the student's own that no result rests on: named, and harmless.
+    let out = human("tests/mark/fair/10_extra_fact.deriv", &[]);
+    assert!(
+        out.contains("  fact [N], line 6: your own assumption"),
+        "{out}"
+    );
+    assert!(out.contains("results 2/2 right"), "{out}");
     // Friction drawn the other way under the reference's own name.
     let out = human("tests/mark/fair/08_same_name_other_way.deriv", &[]);
     assert!(out.contains("names matched by role: F → −F\n"), "{out}");
