@@ -69,23 +69,31 @@ pub enum Cite {
     Line(usize),
 }
 
-/// The facts one verified link rested on, as the checker's justification cites them.
-/// The one place that reads the justification's fact references.
-pub fn cited(status: &Status) -> Vec<Cite> {
+/// The facts one verified link rested on, as the checker's justification cites them;
+/// `None` when the justification does not say (`~=`: then it may rest on any fact
+/// before it). The one place that reads the justification's fact references.
+pub fn cited(status: &Status) -> Option<Vec<Cite>> {
     let facts = match status {
         Status::Verified {
             how: Justification::Facts(fs) | Justification::Signs(fs),
             ..
         } => fs,
-        _ => return Vec::new(),
+        Status::Verified {
+            how: Justification::Identity,
+            ..
+        } => return Some(Vec::new()),
+        Status::Verified { .. } => return None,
+        _ => return Some(Vec::new()),
     };
-    facts
-        .iter()
-        .map(|f| match f.strip_prefix("line ").map(str::parse::<usize>) {
-            Some(Ok(n)) => Cite::Line(n),
-            _ => Cite::Label(f.clone()),
-        })
-        .collect()
+    Some(
+        facts
+            .iter()
+            .map(|f| match f.strip_prefix("line ").map(str::parse::<usize>) {
+                Some(Ok(n)) => Cite::Line(n),
+                _ => Cite::Label(f.clone()),
+            })
+            .collect(),
+    )
 }
 
 fn relations(chain: &Chain) -> Vec<(Expr, &'static str, Expr)> {
@@ -265,14 +273,22 @@ pub fn rests_on(k: usize, claims: &[ClaimAt<'_>], facts: &[Fact]) -> Vec<usize> 
                 add(i);
             }
         }
-        // A verified link: the facts the checker used; any other: those it cites.
+        // A verified link: the facts the checker used (every fact and claim before it
+        // when the justification does not say); any other: those it cites.
         let cites: Vec<Cite> = claim
             .chain
             .links
             .iter()
             .enumerate()
             .flat_map(|(i, l)| match claim.statuses.get(i) {
-                Some(s) if s.is_verified() => cited(s),
+                Some(s) if s.is_verified() => cited(s).unwrap_or_else(|| {
+                    let before = |line: usize| line < claim.line;
+                    let lines = facts
+                        .iter()
+                        .map(|f| f.line)
+                        .chain(claims.iter().map(|c| c.line));
+                    lines.filter(|&n| before(n)).map(Cite::Line).collect()
+                }),
                 _ => written_cites(l),
             })
             .collect();
