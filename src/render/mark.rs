@@ -199,19 +199,36 @@ fn csv_cell(s: &str) -> String {
     }
 }
 
-/// The note of a row: why it was not marked, else why results earned nothing.
+/// The note of a row: why it was not marked, else why results earned nothing and which
+/// of its facts are not the problem's.
 fn note(r: &Row) -> String {
     if let Some(why) = &r.unreadable {
         return format!("not marked: {why}");
     }
     let mut notes: Vec<String> = Vec::new();
     for m in &r.results {
-        if let Outcome::NotCredited(w) = &m.outcome {
-            let n = format!("[{}] not credited: {}", m.expected.label, why(w));
-            if !notes.contains(&n) {
-                notes.push(n);
-            }
+        let n = match &m.outcome {
+            Outcome::NotCredited(w) => format!("[{}] not credited: {}", m.expected.label, why(w)),
+            Outcome::Undecided(w) => format!("[{}] undecided: {w}", m.expected.label),
+            _ => continue,
+        };
+        if !notes.contains(&n) {
+            notes.push(n);
         }
+    }
+    if !r.own.is_empty() {
+        let facts: Vec<String> = r
+            .own
+            .iter()
+            .map(|f| match (&f.label, f.kind) {
+                (Some(l), _) => format!("[{l}] line {}", f.line),
+                (None, FactKind::Use) => format!("use line {}", f.line),
+                (None, FactKind::Let) => format!("let line {}", f.line),
+                (None, FactKind::Where) => format!("where line {}", f.line),
+                (None, _) => format!("line {}", f.line),
+            })
+            .collect();
+        notes.push(format!("facts not the problem's: {}", facts.join(", ")));
     }
     notes.join("; ")
 }

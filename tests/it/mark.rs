@@ -266,7 +266,7 @@ fn human(path: &str, extra: &[&str]) -> String {
 #[test]
 fn results_resting_on_the_students_own_givens_earn_nothing_and_say_why() {
     let r = rows(&["tests/mark/gaming"], &[]);
-    assert_eq!(r.len(), 11, "{r:?}");
+    assert_eq!(r.len(), 12, "{r:?}");
     // The results stated as givens; the answer added as a given; a wrong moment of
     // inertia rescued by `g sin(beta) = 0`; the unknown defined as the answer: every
     // step verifies, and not one result is credited.
@@ -467,6 +467,12 @@ fn correct_work_in_fair_forms_is_credited() {
                 row.ends_with("05_corrected.deriv,2,3,9,factor,2,2,"),
                 "{row}"
             );
+        } else if k == 9 {
+            // Credited, and the note names the fact that is not the problem's.
+            assert!(
+                row.ends_with(",2,2,,,2,2,facts not the problem's: [N] line 6"),
+                "{row}"
+            );
         } else {
             assert!(row.ends_with(",2,2,,,2,2,"), "{row}");
         }
@@ -641,5 +647,15 @@ fn a_role_no_fact_of_the_problem_justifies_is_said_not_claimed() {
     assert!(
         out.contains("  names no fact of the problem matches: phi\n"),
         "{out}"
+    );
+}
+
+#[test]
+fn a_false_given_that_nothing_marked_rests_on_is_named_in_the_row() {
+    let r = rows(&["tests/mark/gaming/12_false_given_unused.deriv"], &[]);
+    assert!(
+        r[0].ends_with(",2,2,,,2,2,facts not the problem's: [c1] line 9"),
+        "{}",
+        r[0]
     );
 }
