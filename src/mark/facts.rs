@@ -341,8 +341,3 @@ pub(crate) fn in_terms(fact: &Fact, terms: &Terms) -> Vec<(String, Vec<String>)>
         })
         .collect()
 }
-
-/// `e` printed as written (for messages).
-pub fn written(e: &Expr) -> String {
-    print::source(e)
-}

@@ -146,8 +146,7 @@ pub fn role_pairs(reference: &FileReport, sub: &FileReport) -> Vec<Mapped> {
             }
         }
     }
-    // A reference name the submission uses but that no role claimed keeps its meaning,
-    // unless the submission's name of that spelling plays another role.
+    // A name in its own place needs no mapping; it only kept others off its place.
     fixed
         .into_iter()
         .filter(|(s, r)| s != r)
