@@ -402,6 +402,9 @@ fn steps(r: &Row) -> String {
             out.push_str(&format!("- line {line}: {v}\n"));
         }
     }
+    if out.is_empty() {
+        out.push_str("- none that could be checked\n");
+    }
     out
 }
 
