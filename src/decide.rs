@@ -23,6 +23,19 @@ pub struct Counterexample {
 }
 
 impl Counterexample {
+    /// The note that states it (`counterexample: at m = 2 the left side is …`).
+    pub fn note(&self) -> crate::diag::Note {
+        crate::diag::Note::Counterexample {
+            at: self
+                .values
+                .iter()
+                .map(|(n, q)| (n.clone(), show_q(q)))
+                .collect(),
+            left: self.lhs.clone(),
+            right: self.rhs.clone(),
+        }
+    }
+
     /// `m = 2, L = 3`.
     pub fn assignment(&self) -> String {
         self.values

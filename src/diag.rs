@@ -229,6 +229,409 @@ pub enum Mistake {
     DeclaredGiven(String),
 }
 
+/// How a fact is cited: by its label, or, when it has none, by the line it is on.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum FactRef {
+    /// `[Fx]`.
+    Label(String),
+    /// `line 12` (1-based, in the file checked).
+    Line(usize),
+}
+
+impl FactRef {
+    /// The name JSON gives it: the label without brackets, or `line 12`.
+    pub fn key(&self) -> String {
+        match self {
+            FactRef::Label(l) => l.clone(),
+            FactRef::Line(n) => format!("line {n}"),
+        }
+    }
+}
+
+impl std::fmt::Display for FactRef {
+    /// `[Fx]` or `line 12`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            FactRef::Label(l) => write!(f, "[{l}]"),
+            FactRef::Line(n) => write!(f, "line {n}"),
+        }
+    }
+}
+
+/// A fact as an elimination used it: itself, or differentiated `derivative` times (a
+/// constraint's velocity and acceleration forms). Written `[noslip]''`.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Cited {
+    /// The fact.
+    pub fact: FactRef,
+    /// How many times it was differentiated with respect to time.
+    pub derivative: usize,
+}
+
+impl Cited {
+    /// The fact itself, not differentiated.
+    pub fn of(fact: FactRef) -> Cited {
+        Cited {
+            fact,
+            derivative: 0,
+        }
+    }
+}
+
+impl std::fmt::Display for Cited {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}{}", self.fact, "'".repeat(self.derivative))
+    }
+}
+
+/// Facts as a message cites them: `[Fx], [MG], line 12`.
+pub fn cite<T: std::fmt::Display>(facts: &[T]) -> String {
+    facts
+        .iter()
+        .map(ToString::to_string)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// What a piece of a [`Text`] cites.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Cite {
+    /// A list of facts, written by [`cite`].
+    Facts(Vec<Cited>),
+    /// A line of the file checked, written as its number.
+    Line(usize),
+}
+
+/// Words, with the places where they cite facts or lines kept as data: a tool that
+/// shows the checked file under other line numbers (lint, which checks a derivation made
+/// from a document) renumbers them with [`Text::renumber`], never by reading the words.
+/// It reads as the `str` it is.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Text {
+    text: String,
+    cites: Vec<(std::ops::Range<usize>, Cite)>,
+}
+
+impl Text {
+    /// Appends words.
+    pub fn push_str(&mut self, s: &str) {
+        self.text.push_str(s);
+    }
+
+    /// The text with `s` appended.
+    pub fn and(mut self, s: &str) -> Text {
+        self.push_str(s);
+        self
+    }
+
+    /// The text with another appended, citations and all.
+    pub fn then(mut self, other: &Text) -> Text {
+        let at = self.text.len();
+        self.text.push_str(&other.text);
+        self.cites.extend(
+            other
+                .cites
+                .iter()
+                .map(|(r, c)| (r.start + at..r.end + at, c.clone())),
+        );
+        self
+    }
+
+    /// Texts one after the other, with `sep` between them.
+    pub fn join(texts: &[Text], sep: &str) -> Text {
+        let mut out = Text::default();
+        for (i, t) in texts.iter().enumerate() {
+            if i > 0 {
+                out.push_str(sep);
+            }
+            out = out.then(t);
+        }
+        out
+    }
+
+    /// `[label] (line 12)`: a label and the line it is on.
+    pub fn label_at(label: &str, line: usize) -> Text {
+        Text::from(format!("[{label}] (line ")).line(line).and(")")
+    }
+
+    /// The text with a list of facts appended (`[Fx], line 12`).
+    pub fn facts(self, facts: &[FactRef]) -> Text {
+        let cited: Vec<Cited> = facts.iter().cloned().map(Cited::of).collect();
+        self.cited(&cited)
+    }
+
+    /// The text with a list of facts as an elimination used them appended (`[Fx]'`).
+    pub fn cited(mut self, facts: &[Cited]) -> Text {
+        self.push_cite(Cite::Facts(facts.to_vec()));
+        self
+    }
+
+    /// The text with a line number appended.
+    pub fn line(mut self, line: usize) -> Text {
+        self.push_cite(Cite::Line(line));
+        self
+    }
+
+    fn push_cite(&mut self, c: Cite) {
+        let start = self.text.len();
+        match &c {
+            Cite::Facts(fs) => self.text.push_str(&cite(fs)),
+            Cite::Line(n) => self.text.push_str(&n.to_string()),
+        }
+        self.cites.push((start..self.text.len(), c));
+    }
+
+    /// Whether it cites any fact.
+    pub fn cites_facts(&self) -> bool {
+        self.cites
+            .iter()
+            .any(|(_, c)| matches!(c, Cite::Facts(fs) if !fs.is_empty()))
+    }
+
+    /// The same words with every line cited mapped by `map`. A fact on a line `map`
+    /// has no number for is left out of its list (unless it is all the list has), a
+    /// fact a list names twice once mapped is named once, and a lone line with no new
+    /// number keeps its old one.
+    pub fn renumber(&self, map: &dyn Fn(usize) -> Option<usize>) -> Text {
+        let mut out = Text::default();
+        let mut at = 0;
+        for (range, c) in &self.cites {
+            out.push_str(&self.text[at..range.start]);
+            at = range.end;
+            match c {
+                Cite::Line(n) => out.push_cite(Cite::Line(map(*n).unwrap_or(*n))),
+                Cite::Facts(fs) => {
+                    let mut mapped: Vec<Cited> = Vec::new();
+                    for f in fs {
+                        let f = match f.fact {
+                            FactRef::Line(n) => match map(n) {
+                                Some(m) => Cited {
+                                    fact: FactRef::Line(m),
+                                    derivative: f.derivative,
+                                },
+                                None => continue,
+                            },
+                            _ => f.clone(),
+                        };
+                        if !mapped.contains(&f) {
+                            mapped.push(f);
+                        }
+                    }
+                    if mapped.is_empty() {
+                        mapped = fs.clone();
+                    }
+                    out.push_cite(Cite::Facts(mapped));
+                }
+            }
+        }
+        out.push_str(&self.text[at..]);
+        out
+    }
+}
+
+impl Text {
+    /// The words.
+    pub fn as_str(&self) -> &str {
+        &self.text
+    }
+}
+
+impl std::ops::Deref for Text {
+    type Target = str;
+    fn deref(&self) -> &str {
+        &self.text
+    }
+}
+
+impl std::fmt::Display for Text {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.text)
+    }
+}
+
+impl From<String> for Text {
+    fn from(text: String) -> Text {
+        Text {
+            text,
+            cites: Vec::new(),
+        }
+    }
+}
+
+impl From<&str> for Text {
+    fn from(text: &str) -> Text {
+        Text::from(text.to_string())
+    }
+}
+
+impl PartialEq<str> for Text {
+    fn eq(&self, other: &str) -> bool {
+        self.text == other
+    }
+}
+
+impl PartialEq<&str> for Text {
+    fn eq(&self, other: &&str) -> bool {
+        self.text == *other
+    }
+}
+
+/// A note under a diagnostic, as data: the expressions and values it states are kept
+/// apart from its words, which are made by its `Display` (and typeset by the worked
+/// solutions).
+#[non_exhaustive]
+#[derive(Clone, Debug, PartialEq)]
+pub enum Note {
+    /// Words.
+    Text(Text),
+    /// A side as written, in rigor's syntax: `left side:  L^2 m/12`.
+    Side {
+        /// The left side (else the right).
+        left: bool,
+        /// Its normal form.
+        value: String,
+    },
+    /// Both sides once the facts are used: `with the facts (after using [a]): left …,
+    /// right …`.
+    Reduced {
+        /// The facts used.
+        using: Vec<FactRef>,
+        /// The left side.
+        left: String,
+        /// The right side.
+        right: String,
+    },
+    /// The difference of the sides left once the facts are used: `after using the
+    /// facts, left − right = …`.
+    Remainder {
+        /// Whether the facts eliminated unknowns (`after eliminating what the facts
+        /// give`) rather than being substituted.
+        eliminated: bool,
+        /// The difference.
+        value: String,
+    },
+    /// A point where the sides differ: `counterexample: at m = 2 the left side is 4 and
+    /// the right side 3`.
+    Counterexample {
+        /// `symbol = value`, each shown.
+        at: Vec<(String, String)>,
+        /// The left side's value there.
+        left: String,
+        /// The right side's value there.
+        right: String,
+    },
+    /// How to declare quantities so that the step can be checked, with the names it is
+    /// about.
+    Declare {
+        /// The quantities.
+        names: Vec<String>,
+        /// What to do.
+        words: Text,
+    },
+}
+
+impl Note {
+    /// The same note with the lines it cites mapped (see [`Text::renumber`]).
+    pub fn renumber(&self, map: &dyn Fn(usize) -> Option<usize>) -> Note {
+        match self {
+            Note::Text(t) => Note::Text(t.renumber(map)),
+            Note::Reduced { using, left, right } => {
+                let t = Text::default().facts(using).renumber(map);
+                let Some((_, Cite::Facts(using))) = t.cites.into_iter().next() else {
+                    return self.clone();
+                };
+                let using = using.into_iter().map(|c| c.fact).collect();
+                Note::Reduced {
+                    using,
+                    left: left.clone(),
+                    right: right.clone(),
+                }
+            }
+            Note::Declare { names, words } => Note::Declare {
+                names: names.clone(),
+                words: words.renumber(map),
+            },
+            other => other.clone(),
+        }
+    }
+}
+
+impl std::fmt::Display for Note {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Note::Text(t) => f.write_str(t),
+            Note::Side { left: true, value } => write!(f, "left side:  {value}"),
+            Note::Side { left: false, value } => write!(f, "right side: {value}"),
+            Note::Reduced { using, left, right } if using.is_empty() => {
+                write!(f, "with the facts: left {left}, right {right}")
+            }
+            Note::Reduced { using, left, right } => write!(
+                f,
+                "with the facts (after using {}): left {left}, right {right}",
+                cite(using)
+            ),
+            Note::Remainder {
+                eliminated: false,
+                value,
+            } => write!(f, "after using the facts, left − right = {value}"),
+            Note::Remainder {
+                eliminated: true,
+                value,
+            } => write!(
+                f,
+                "after eliminating what the facts give, left − right = {value}"
+            ),
+            Note::Counterexample { at, left, right } if at.is_empty() => {
+                write!(f, "the left side is {left}, the right side {right}")
+            }
+            Note::Counterexample { at, left, right } => {
+                let at: Vec<String> = at.iter().map(|(n, v)| format!("{n} = {v}")).collect();
+                write!(
+                    f,
+                    "counterexample: at {} the left side is {left} and the right side {right}",
+                    at.join(", ")
+                )
+            }
+            Note::Declare { words, .. } => f.write_str(words),
+        }
+    }
+}
+
+impl From<String> for Note {
+    fn from(s: String) -> Note {
+        Note::Text(s.into())
+    }
+}
+
+impl From<&str> for Note {
+    fn from(s: &str) -> Note {
+        Note::Text(s.into())
+    }
+}
+
+impl From<Text> for Note {
+    fn from(t: Text) -> Note {
+        Note::Text(t)
+    }
+}
+
+/// A limit of rigor's work that a refusal met, so that a front end can say how to raise
+/// it (the library's words say the limit, never a flag).
+#[non_exhaustive]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Reached {
+    /// The number of terms of an intermediate result.
+    Terms(usize),
+    /// The number of digits of a number.
+    Digits(u64),
+    /// The time one claim may take.
+    ClaimTime,
+    /// The time one file may take.
+    FileBudget,
+    /// The size of a file read, in bytes.
+    FileSize(u64),
+}
+
 /// A message about a spot in a source.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Diagnostic {
@@ -237,20 +640,22 @@ pub struct Diagnostic {
     /// A stable code, e.g. `E0301`.
     pub code: Code,
     /// The headline; it makes sense on its own.
-    pub message: String,
+    pub message: Text,
     /// The spot and what to say under it.
     pub primary: Option<(Span, String)>,
     /// Further lines (`= note: …`).
-    pub notes: Vec<String>,
+    pub notes: Vec<Note>,
     /// What the step got wrong, when the checker knows (a refuted or unverified `=`).
     pub mistake: Option<Mistake>,
+    /// The limit it met, when it is a refusal at one.
+    pub reached: Option<Reached>,
 }
 
 impl Diagnostic {
     /// An error with a primary span.
     pub fn error(
         code: Code,
-        message: impl Into<String>,
+        message: impl Into<Text>,
         span: Span,
         label: impl Into<String>,
     ) -> Diagnostic {
@@ -261,7 +666,14 @@ impl Diagnostic {
             primary: Some((span, label.into())),
             notes: Vec::new(),
             mistake: None,
+            reached: None,
         }
+    }
+
+    /// The same diagnostic, with the limit it met.
+    pub fn reached(mut self, r: Reached) -> Diagnostic {
+        self.reached = Some(r);
+        self
     }
 
     /// The same diagnostic, with what the step got wrong.
@@ -276,13 +688,18 @@ impl Diagnostic {
     }
 
     /// Adds a note.
-    pub fn note(mut self, n: impl Into<String>) -> Diagnostic {
+    pub fn note(mut self, n: impl Into<Note>) -> Diagnostic {
         self.notes.push(n.into());
         self
     }
 
+    /// Adds a note in place.
+    pub fn add_note(&mut self, n: impl Into<Note>) {
+        self.notes.push(n.into());
+    }
+
     /// Adds a note when `cond` holds.
-    pub fn note_if(self, cond: bool, n: impl Into<String>) -> Diagnostic {
+    pub fn note_if(self, cond: bool, n: impl Into<Note>) -> Diagnostic {
         if cond {
             self.note(n)
         } else {

@@ -55,10 +55,24 @@ impl Resolver for FsResolver {
 }
 
 /// Why a file could not be read.
-enum ReadError {
-    TooLarge { size: u64, max: u64 },
-    NotUtf8 { offset: usize },
+#[derive(Debug)]
+pub enum ReadError {
+    /// Larger than the largest file read.
+    TooLarge {
+        /// Its size, in bytes.
+        size: u64,
+        /// The limit, in bytes.
+        max: u64,
+    },
+    /// Not UTF-8.
+    NotUtf8 {
+        /// The offset of the first invalid byte.
+        offset: usize,
+    },
+    /// The system could not read it.
     Io(std::io::Error),
+    /// Anything else, said.
+    Other(String),
 }
 
 impl ReadError {
@@ -76,6 +90,7 @@ impl ReadError {
                 path,
                 reason: e.to_string(),
             },
+            ReadError::Other(reason) => ImportError::Unreadable { path, reason },
         }
     }
 }
@@ -83,15 +98,15 @@ impl ReadError {
 impl std::fmt::Display for ReadError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            ReadError::TooLarge { size, max } => write!(
-                f,
-                "the file is {size} bytes, more than the limit of {max} (see --max-file-size)"
-            ),
+            ReadError::TooLarge { size, max } => {
+                write!(f, "the file is {size} bytes, more than the limit of {max}")
+            }
             ReadError::NotUtf8 { offset } => write!(
                 f,
                 "the file is not valid UTF-8 (invalid byte at offset {offset})"
             ),
             ReadError::Io(e) => e.fmt(f),
+            ReadError::Other(why) => f.write_str(why),
         }
     }
 }
@@ -111,9 +126,9 @@ fn read_text(path: &Path, max: u64) -> Result<String, ReadError> {
     })
 }
 
-/// The text of `path`, at most `max` bytes of UTF-8; the error is the message to show.
-pub fn read(path: &Path, max: u64) -> Result<String, String> {
-    read_text(path, max).map_err(|e| e.to_string())
+/// The text of `path`, at most `max` bytes of UTF-8.
+pub fn read(path: &Path, max: u64) -> Result<String, ReadError> {
+    read_text(path, max)
 }
 
 fn collect(path: &Path, out: &mut Vec<(PathBuf, PathBuf)>, root: &Path) -> Result<(), String> {
@@ -137,17 +152,22 @@ fn collect(path: &Path, out: &mut Vec<(PathBuf, PathBuf)>, root: &Path) -> Resul
     Ok(())
 }
 
-fn unreadable(path: &Path, msg: String) -> FileReport {
+fn unreadable(path: &Path, e: ReadError) -> FileReport {
+    let reached = match e {
+        ReadError::TooLarge { max, .. } => Some(crate::diag::Reached::FileSize(max)),
+        _ => None,
+    };
     FileReport {
         path: path.display().to_string(),
         input_error: true,
         diagnostics: vec![Diagnostic {
             severity: crate::diag::Severity::Error,
             code: Code::Unreadable,
-            message: format!("cannot read {}: {msg}", path.display()),
+            message: format!("cannot read {}: {e}", path.display()).into(),
             primary: None,
             notes: Vec::new(),
             mistake: None,
+            reached,
         }],
         ..FileReport::default()
     }
@@ -233,7 +253,7 @@ pub fn in_book_order(dir: &Path, mut reports: Vec<FileReport>) -> Result<Vec<Fil
     if !order_file.is_file() {
         return Ok(reports);
     }
-    let text = read(&order_file, 1_000_000)?;
+    let text = read(&order_file, 1_000_000).map_err(|e| e.to_string())?;
     let mut out = Vec::new();
     for (n, line) in text.lines().enumerate() {
         let name = line.split('#').next().unwrap_or("").trim();
@@ -276,41 +296,17 @@ pub fn check_paths(paths: &[PathBuf], opts: &Options) -> Vec<FileReport> {
         };
         let before = jobs.len();
         match collect(p, &mut jobs, &root) {
-            Err(e) => early.push((jobs.len(), unreadable(p, e))),
+            Err(e) => early.push((jobs.len(), unreadable(p, ReadError::Other(e)))),
             // A folder with no derivation in it is a mistyped path, not a pass.
             Ok(()) if jobs.len() == before => {
-                early.push((jobs.len(), unreadable(p, "no `.deriv` file in it".into())))
+                let e = ReadError::Other("no `.deriv` file in it".into());
+                early.push((jobs.len(), unreadable(p, e)))
             }
             Ok(()) => {}
         }
     }
-    let results: Mutex<Vec<Option<FileReport>>> = Mutex::new(vec![None; jobs.len()]);
-    let next = Mutex::new(0usize);
-    let workers = std::thread::available_parallelism()
-        .map_or(2, |n| n.get())
-        .min(jobs.len().max(1));
-    std::thread::scope(|s| {
-        for _ in 0..workers {
-            s.spawn(|| loop {
-                let i = {
-                    let mut n = next.lock().unwrap_or_else(|e| e.into_inner());
-                    let i = *n;
-                    *n += 1;
-                    i
-                };
-                let Some((path, root)) = jobs.get(i) else {
-                    break;
-                };
-                let report = check_file(path, root, opts);
-                let mut r = results.lock().unwrap_or_else(|e| e.into_inner());
-                if let Some(slot) = r.get_mut(i) {
-                    *slot = Some(report);
-                }
-            });
-        }
-    });
+    let results = parallel(&jobs, |(path, root)| check_file(path, root, opts));
     let mut out: Vec<FileReport> = Vec::new();
-    let results = results.into_inner().unwrap_or_else(|e| e.into_inner());
     let mut early = early.into_iter().peekable();
     for (i, r) in results.into_iter().enumerate() {
         while early.peek().is_some_and(|e| e.0 == i) {
@@ -318,9 +314,7 @@ pub fn check_paths(paths: &[PathBuf], opts: &Options) -> Vec<FileReport> {
                 out.push(e.1);
             }
         }
-        if let Some(r) = r {
-            out.push(r);
-        }
+        out.push(r);
     }
     out.extend(early.map(|e| e.1));
     out

@@ -238,8 +238,12 @@ fn main() -> ExitCode {
             steps,
         } => cli::document(
             &file,
-            (o.as_deref(), title.as_deref()),
-            (true, detail(steps)),
+            &cli::DocumentArgs {
+                out: o.as_deref(),
+                title: title.as_deref(),
+                latex: true,
+                detail: detail(steps),
+            },
             &opts,
         ),
         Command::Markdown {
@@ -249,8 +253,12 @@ fn main() -> ExitCode {
             steps,
         } => cli::document(
             &file,
-            (o.as_deref(), title.as_deref()),
-            (false, detail(steps)),
+            &cli::DocumentArgs {
+                out: o.as_deref(),
+                title: title.as_deref(),
+                latex: false,
+                detail: detail(steps),
+            },
             &opts,
         ),
         Command::Lint { docs, format } => cli::lint(&docs, format, timeout, &opts),

@@ -2,14 +2,14 @@
 //! `step.rs`), and what a verified claim adds to the facts (with the conditions it was
 //! derived under) and to the file's exports.
 
+use super::elimination::Fact;
 use super::report::{ClaimReport, LinkReport, Status};
 use super::scope::{Decl, Scope};
 use super::signs::respects_sign;
-use super::solve::Fact;
 use super::step::LinkInput;
 use super::walk::{Checker, Known};
 use crate::clock::Deadline;
-use crate::diag::{Code, FailureKind};
+use crate::diag::{Code, FailureKind, Text};
 use crate::lower::Condition;
 use crate::normal::atom::{self, AtomId};
 use crate::normal::print::plain;
@@ -50,7 +50,8 @@ impl Checker<'_, '_> {
                             span,
                             "not checked",
                         )
-                        .note("this step and the ones after it are undecided; the file's budget is set by `--budget`"),
+                        .note("this step and the ones after it are undecided")
+                        .reached(crate::diag::Reached::FileBudget),
                     );
                 }
                 self.push_undecided_links(claim, chain, Status::Undecided);
@@ -73,7 +74,8 @@ impl Checker<'_, '_> {
         deadline: Option<Deadline>,
     ) {
         let span = claim.span;
-        if let Some(msg) = self.uses_failed_name(chain) {
+        if let Some((name, msg)) = self.uses_failed_name(chain) {
+            self.noted_uses.insert(name);
             return self.push_not_checked_claim(claim, chain, msg);
         }
         let Some(subs) = self.where_subs(where_) else {
@@ -195,18 +197,20 @@ impl Checker<'_, '_> {
         if let (None, Some(given)) = (by, self.contradicted.clone()) {
             if d.failure() != Some(FailureKind::Units) {
                 self.not_checked_note(
-                    format!("not checked: it needs the facts in scope, but {given} contradicts the others"),
+                    Text::from("not checked: it needs the facts in scope, but ")
+                        .then(&given)
+                        .and(" contradicts the others"),
                     span,
                 );
                 return Status::NotChecked;
             }
         }
-        let cited: Vec<String> = match by {
+        let cited: Vec<Text> = match by {
             Some(By::Labels(ls)) => ls
                 .iter()
                 .filter_map(|l| {
                     let line = self.failed_labels.get(&l.name)?;
-                    Some(format!("[{}] (line {line})", l.name))
+                    Some(Text::label_at(&l.name, *line))
                 })
                 .collect(),
             // Undecided on all the facts in scope, some of which failed earlier: the
@@ -219,11 +223,11 @@ impl Checker<'_, '_> {
                 let others = self.failed_labels.len().saturating_sub(1);
                 first
                     .map(|(l, line)| match others {
-                        0 => format!("[{l}] (line {line})"),
-                        n => format!(
-                            "[{l}] (line {line}) and {n} later step{}",
+                        0 => Text::label_at(l, *line),
+                        n => Text::label_at(l, *line).and(&format!(
+                            " and {n} later step{}",
                             if n == 1 { "" } else { "s" }
-                        ),
+                        )),
                     })
                     .into_iter()
                     .collect()
@@ -239,16 +243,15 @@ impl Checker<'_, '_> {
             self.report.diagnostics.push(d);
             return status;
         }
+        let cited = Text::join(&cited, ", ");
         let msg = if by.is_some() {
-            format!(
-                "not checked: it cites {}, which did not check",
-                cited.join(", ")
-            )
+            Text::from("not checked: it cites ")
+                .then(&cited)
+                .and(", which did not check")
         } else {
-            format!(
-                "not checked: it needs the facts in scope, but {} did not check",
-                cited.join(", ")
-            )
+            Text::from("not checked: it needs the facts in scope, but ")
+                .then(&cited)
+                .and(" did not check")
         };
         self.not_checked_note(msg, span);
         Status::NotChecked
@@ -291,9 +294,10 @@ impl Checker<'_, '_> {
 
     /// Whether `d` is zero once the unknowns are eliminated with every fact in scope.
     fn zero_by_facts(&self, d: &Rat) -> bool {
-        let facts: Vec<super::solve::Fact> = self.facts.iter().map(|k| k.fact.clone()).collect();
+        let facts: Vec<super::elimination::Fact> =
+            self.facts.iter().map(|k| k.fact.clone()).collect();
         let is_unknown = |a| super::walk::unknown_atom(&self.scope, a);
-        super::solve::eliminate_all(d, &facts, &is_unknown, &self.env.signs, None, false)
+        super::elimination::eliminate_all(d, &facts, &is_unknown, &self.env.signs, None, false)
             .is_ok_and(|(t, _, _)| t.is_zero())
     }
 
@@ -314,7 +318,7 @@ impl Checker<'_, '_> {
     }
 
     /// The note (`msg`) of a link not checked because what it cites did not hold.
-    fn not_checked_note(&mut self, msg: String, span: Span) {
+    fn not_checked_note(&mut self, msg: impl Into<Text>, span: Span) {
         let mut d = crate::diag::Diagnostic::error(Code::NotChecked, msg, span, "not checked");
         d.severity = crate::diag::Severity::Note;
         self.report
@@ -323,7 +327,7 @@ impl Checker<'_, '_> {
     }
 
     /// A note N0205 for something not checked because of a mistake reported earlier.
-    pub(super) fn note_not_checked(&mut self, msg: String, span: Span) {
+    pub(super) fn note_not_checked(&mut self, msg: impl Into<Text>, span: Span) {
         let mut d = crate::diag::Diagnostic::error(Code::NotChecked, msg, span, "not checked");
         d.severity = crate::diag::Severity::Note;
         self.report
@@ -460,26 +464,27 @@ impl Checker<'_, '_> {
 
     /// "not checked: …" when the chain uses a name that a failed `use` would have
     /// defined (the `use` has the error).
-    fn uses_failed_name(&self, chain: &Chain) -> Option<String> {
+    fn uses_failed_name(&self, chain: &Chain) -> Option<(String, Text)> {
         if self.failed_names.is_empty() {
             return None;
         }
         let all = |_: &str| None;
         let exprs = chain.exprs();
-        let mut names: Vec<(usize, String, String)> = exprs
+        let mut names: Vec<(usize, String, Text)> = exprs
             .flat_map(|e| super::scope::undeclared(e, &self.scope, &all))
             .filter_map(|(n, _)| {
                 let (line, why) = self.failed_names.get(&n)?;
                 Some((*line, n, why.clone()))
             })
             .collect();
-        names.sort();
+        names.sort_by(|a, b| (a.0, &a.1).cmp(&(b.0, &b.1)));
         let (_, name, why) = names.into_iter().next()?;
-        Some(format!("not checked: it uses `{name}`, {why}"))
+        let msg = Text::from(format!("not checked: it uses `{name}`, ")).then(&why);
+        Some((name, msg))
     }
 
     /// A claim none of whose links is checked (`msg` says why, as a note).
-    fn push_not_checked_claim(&mut self, claim: ClaimReport, chain: &Chain, msg: String) {
+    fn push_not_checked_claim(&mut self, claim: ClaimReport, chain: &Chain, msg: Text) {
         let whole = chain
             .links
             .last()
@@ -569,15 +574,14 @@ impl Checker<'_, '_> {
             .iter()
             .all(|l| self.failed_labels.contains_key(&l.name))
         {
-            let what: Vec<String> = missing
+            let what: Vec<Text> = missing
                 .iter()
-                .map(|l| format!("[{}] (line {})", l.name, self.failed_labels[&l.name]))
+                .map(|l| Text::label_at(&l.name, self.failed_labels[&l.name]))
                 .collect();
             self.not_checked_note(
-                format!(
-                    "not checked: it cites {}, which did not check",
-                    what.join(", ")
-                ),
+                Text::from("not checked: it cites ")
+                    .then(&Text::join(&what, ", "))
+                    .and(", which did not check"),
                 span,
             );
             return Err(true);

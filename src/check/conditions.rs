@@ -7,8 +7,8 @@ use super::signs::{essential_factor, sign_of};
 use super::step::{LinkInput, Reduced};
 use super::walk::Checker;
 use super::zeros::forced_zero;
-use crate::diag::Code;
 use crate::diag::Diagnostic;
+use crate::diag::{Cited, Code, Text};
 use crate::lower::{Condition, Need};
 use crate::normal::print::plain;
 use crate::normal::{Rat, Sign};
@@ -54,11 +54,11 @@ impl Checker<'_, '_> {
 
     /// The conditions of the facts a link used (a fact derived assuming `c != 0` holds
     /// only where `c != 0`), with the fact's name.
-    fn inherited<'k>(&self, red: &'k Reduced) -> Vec<(&'k str, &'k Condition)> {
+    fn inherited<'k>(&self, red: &'k Reduced) -> Vec<(&'k Cited, &'k Condition)> {
         red.allowed
             .iter()
             .filter(|k| red.used_names.contains(&k.fact.name))
-            .flat_map(|k| k.divisors.iter().map(move |d| (k.fact.name.as_str(), d)))
+            .flat_map(|k| k.divisors.iter().map(move |d| (&k.fact.name, d)))
             .collect()
     }
 
@@ -77,15 +77,17 @@ impl Checker<'_, '_> {
                 continue;
             }
             let message = match from {
-                Some(fact) => format!(
-                    "this step uses {fact}, which holds only where {} != 0, and here it is 0",
-                    plain(d0)
-                ),
+                Some(fact) => Text::from("this step uses ")
+                    .cited(std::slice::from_ref(fact))
+                    .and(&format!(
+                        ", which holds only where {} != 0, and here it is 0",
+                        plain(d0)
+                    )),
                 None if d0.as_constant().is_some() => {
                     "this step divides by zero at the value substituted (in `subs` or `eval`)"
-                        .to_string()
+                        .into()
                 }
-                None => format!("this step divides by {}, which `where` makes 0", plain(d0)),
+                None => format!("this step divides by {}, which `where` makes 0", plain(d0)).into(),
             };
             return Err(Diagnostic::error(
                 Code::DivisionByZero,
@@ -109,7 +111,8 @@ impl Checker<'_, '_> {
         let signs = &self.env.signs;
         let span = input.span;
         let steps = red.elim.as_ref().map_or(&[][..], |e| &e.steps[..]);
-        let reduced = super::solve::apply_steps(d, steps, signs).unwrap_or_else(|_| d.clone());
+        let reduced =
+            super::elimination::apply_steps(d, steps, signs).unwrap_or_else(|_| d.clone());
         if need == Need::NonZero {
             let zero = reduced.is_zero() || forced_zero(&reduced, &red.scope, signs);
             if zero && elimination {

@@ -4,8 +4,8 @@
 //! elimination gives). A clear disagreement makes the link "undecided: internal check
 //! disagrees", with both values; it can never make a link verified or failed.
 
+use super::elimination::{Fact, Step};
 use super::report::Status;
-use super::solve::{Fact, Step};
 use super::step::{LinkInput, Reduced};
 use super::walk::{unknown_atom, Checker};
 use crate::decide::Evaluator;
@@ -103,14 +103,14 @@ impl Checker<'_, '_> {
                 .facts
                 .iter()
                 .filter_map(|f| {
-                    let v = super::solve::apply_steps(&f.value, &steps, signs).ok()?;
+                    let v = super::elimination::apply_steps(&f.value, &steps, signs).ok()?;
                     (!v.is_zero()).then(|| Fact {
                         value: v,
                         name: f.name.clone(),
                     })
                 })
                 .collect();
-            super::solve::solve_for_point(&left, &is_unknown, signs).0
+            super::elimination::solve_for_point(&left, &is_unknown, signs).0
         };
         let sit = Situation {
             nonzero: &nonzero,
@@ -290,7 +290,7 @@ pub(super) struct Situation<'r> {
     /// link assumes).
     pub nonzero: &'r [crate::normal::Rat],
     /// Values of parameters that the facts tie once the unknowns are eliminated (from
-    /// [`super::solve::solve_for_point`]), evaluated before the steps.
+    /// [`super::elimination::solve_for_point`]), evaluated before the steps.
     pub params: &'r [Step],
 }
 

@@ -57,7 +57,7 @@ impl Checker<'_, '_> {
         for m in mixed {
             let mut d = Diagnostic::error(Code::MixedScales, m.message, m.span, "mixed scales");
             d.severity = crate::diag::Severity::Warning;
-            d.notes.extend(m.note);
+            d.notes.extend(m.note.map(Into::into));
             self.report.diagnostics.push(d);
         }
         if !missing.is_empty() {
@@ -112,7 +112,7 @@ impl Checker<'_, '_> {
     pub(super) fn unit_diagnostic(p: UnitProblem) -> Diagnostic {
         let mut d = Diagnostic::error(Code::Units, p.message, p.span, "inconsistent units");
         if let Some(n) = p.note {
-            d.notes.push(n);
+            d.add_note(n);
         }
         d
     }

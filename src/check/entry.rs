@@ -7,9 +7,10 @@
 use super::report::FileReport;
 use super::walk::Checker;
 use crate::diag::Code;
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, Reached};
 use crate::lower::Condition;
 use crate::normal::Rat;
+use crate::syntax::ast::Span;
 use crate::syntax::{parse_file, ParseOptions};
 use std::collections::HashMap;
 use std::fmt;
@@ -135,7 +136,7 @@ impl fmt::Display for ImportError {
             ),
             ImportError::TooLarge { path, size, max } => write!(
                 f,
-                "cannot read \"{path}\": the file is {size} bytes, more than the limit of {max} (see --max-file-size)"
+                "cannot read \"{path}\": the file is {size} bytes, more than the limit of {max}"
             ),
             ImportError::NotUtf8 { path, offset } => write!(
                 f,
@@ -267,18 +268,22 @@ pub struct Loader<'o> {
 
 impl Loader<'_> {
     /// The exports of `path`, written in the file `importer`, checking it if needed.
-    pub fn import(&mut self, importer: &str, path: &str) -> Result<Exports, String> {
-        let src = self
-            .resolver
-            .resolve(importer, path)
-            .map_err(|e| e.to_string())?;
+    pub fn import(&mut self, importer: &str, path: &str) -> Result<Exports, Diagnostic> {
+        let failed = |m: String| Diagnostic::error(Code::ImportFailed, m, Span::new(0, 0), "");
+        let src = self.resolver.resolve(importer, path).map_err(|e| {
+            let d = failed(e.to_string());
+            match e {
+                ImportError::TooLarge { max, .. } => d.reached(Reached::FileSize(max)),
+                _ => d,
+            }
+        })?;
         if let Some(i) = self.stack.iter().position(|(id, _)| *id == src.id) {
             let chain: Vec<&str> = self.stack[i..]
                 .iter()
                 .map(|(_, d)| d.as_str())
                 .chain(std::iter::once(src.display.as_str()))
                 .collect();
-            return Err(format!("import cycle: {}", chain.join(" → ")));
+            return Err(failed(format!("import cycle: {}", chain.join(" → "))));
         }
         if let Some(e) = self.cache.get(&src.id) {
             return Ok(e.clone());

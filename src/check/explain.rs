@@ -3,9 +3,9 @@
 //! fact determines, or why rigor can decide neither way.
 
 use super::confirm::Situation;
-use super::report::cite;
-use super::solve::Step;
-use super::solve::{apply_steps, unknown_name, Fact};
+
+use super::elimination::Step;
+use super::elimination::{apply_steps, unknown_name, Fact};
 use super::step::{LinkInput, Reduced};
 use crate::diag::Code;
 
@@ -14,7 +14,7 @@ pub(super) type Sides = (Rat, Rat, Vec<Step>);
 use super::walk::{unknown_atom, Checker};
 use crate::clock::Deadline;
 use crate::decide::Verdict;
-use crate::diag::{Diagnostic, Mistake};
+use crate::diag::{Cited, Diagnostic, Mistake, Note, Text};
 use crate::lower::Condition;
 use crate::normal::atom::{self, AtomId};
 use crate::normal::print::plain;
@@ -37,9 +37,17 @@ impl Checker<'_, '_> {
         let signs = &self.env.signs;
         let is_unknown = |x: AtomId| unknown_atom(&self.scope, x);
         let elim = |facts: &[Fact], params: bool| {
-            super::solve::eliminate_all(&red.diff, facts, &is_unknown, signs, deadline, params).ok()
+            super::elimination::eliminate_all(
+                &red.diff,
+                facts,
+                &is_unknown,
+                signs,
+                deadline,
+                params,
+            )
+            .ok()
         };
-        let not_verified = |headline: String, notes: Vec<String>| {
+        let not_verified = |headline: Text, notes: Vec<Note>| {
             let mut d = Diagnostic::error(Code::NotVerified, headline, span, "not verified");
             d.notes = notes;
             d
@@ -55,7 +63,7 @@ impl Checker<'_, '_> {
                 "it does not follow from the facts cited, and the other facts in scope bear on it"
             };
             return Err(not_verified(
-                format!("not verified from the facts cited: {why}"),
+                format!("not verified from the facts cited: {why}").into(),
                 vec!["cite every fact the step needs in `by [..]`, or drop `by [..]`".into()],
             ));
         }
@@ -64,12 +72,15 @@ impl Checker<'_, '_> {
             let d = super::signs::essential_factor(d, signs).unwrap_or_else(|| d.clone());
             let d = plain(&d);
             return Err(not_verified(
-                format!(
-                    "not verified: this step is {fact} divided by {d}, so it follows only where {d} != 0, which the declared signs do not show",
-                ),
+                Text::from("not verified: this step is ")
+                    .cited(std::slice::from_ref(fact))
+                    .and(&format!(
+                        " divided by {d}, so it follows only where {d} != 0, which the declared signs do not show"
+                    )),
                 vec![format!(
                     "declare signs that make {d} nonzero (`symbols … != 0` or `> 0`), or state what the step needs"
-                )],
+                )
+                .into()],
             ));
         }
         if full.0.is_zero() {
@@ -100,16 +111,20 @@ impl Checker<'_, '_> {
         Err(not_verified(
             tied_headline(&tied, &left),
             vec![
-                format!(
-                    "after using the facts, left − right = {}",
-                    short(&plain(&target))
-                ),
-                format!(
-                    "if the facts determine {}, declare {} with `unknowns` so that rigor solves for {}",
-                    atom_names(&tied),
-                    them(&tied),
-                    them(&tied)
-                ),
+                Note::Remainder {
+                    eliminated: false,
+                    value: short(&plain(&target)),
+                },
+                Note::Declare {
+                    names: tied.iter().filter_map(|a| atom::sym_name(*a)).collect(),
+                    words: format!(
+                        "if the facts determine {}, declare {} with `unknowns` so that rigor solves for {}",
+                        atom_names(&tied),
+                        them(&tied),
+                        them(&tied)
+                    )
+                    .into(),
+                },
             ],
         ))
     }
@@ -140,8 +155,15 @@ impl Checker<'_, '_> {
             };
             let is_unknown = |a: AtomId| a == x || unknown_atom(&self.scope, a);
             let elim = |target: &Rat| {
-                super::solve::eliminate_all(target, &red.scope, &is_unknown, signs, deadline, false)
-                    .ok()
+                super::elimination::eliminate_all(
+                    target,
+                    &red.scope,
+                    &is_unknown,
+                    signs,
+                    deadline,
+                    false,
+                )
+                .ok()
             };
             let Some((rest, _, _)) = elim(&red.diff) else {
                 continue;
@@ -152,23 +174,32 @@ impl Checker<'_, '_> {
             // Its value from the facts, if they give it in terms of the parameters.
             let value = elim(&Rat::atom(x)).and_then(|(v, steps, _)| {
                 let free = !v.atoms().iter().any(|a| is_unknown(*a));
-                let mut from: Vec<String> = steps.iter().map(|s| s.fact.clone()).collect();
+                let mut from: Vec<Cited> = steps.iter().map(|s| s.fact.clone()).collect();
                 from.dedup();
-                free.then(|| format!(" ({name} = {} from {})", short(&plain(&v)), from.join(", ")))
+                free.then(|| {
+                    Text::from(format!(" ({name} = {} from ", short(&plain(&v))))
+                        .cited(&from)
+                        .and(")")
+                })
             });
             let mut d = Diagnostic::error(
                 Code::NotVerified,
-                format!(
-                    "not verified: the facts determine {name}{}, but `{name}` is declared with `symbols`, as a given quantity",
-                    value.unwrap_or_default()
-                ),
+                Text::from(format!("not verified: the facts determine {name}"))
+                    .then(&value.unwrap_or_default())
+                    .and(&format!(
+                        ", but `{name}` is declared with `symbols`, as a given quantity"
+                    )),
                 span,
                 format!("with `unknowns {name}` this step follows"),
             )
             .with_mistake(Some(Mistake::DeclaredGiven(name.clone())));
-            d.notes.push(format!(
-                "declare it with `unknowns {name}` (keeping `symbols {name}` for its sign, if it has one) so that rigor solves for it"
-            ));
+            d.add_note(Note::Declare {
+                names: vec![name.clone()],
+                words: format!(
+                    "declare it with `unknowns {name}` (keeping `symbols {name}` for its sign, if it has one) so that rigor solves for it"
+                )
+                .into(),
+            });
             return Some(d);
         }
         None
@@ -209,15 +240,21 @@ impl Checker<'_, '_> {
     fn free_state_sides(&self, red: &Reduced) -> Option<Sides> {
         let signs = &self.env.signs;
         let is_unknown = |x: AtomId| unknown_atom(&self.scope, x);
-        let (target, steps, left) =
-            super::solve::eliminate_all(&red.diff, &red.scope, &is_unknown, signs, None, false)
-                .ok()?;
+        let (target, steps, left) = super::elimination::eliminate_all(
+            &red.diff,
+            &red.scope,
+            &is_unknown,
+            signs,
+            None,
+            false,
+        )
+        .ok()?;
         // Facts left over constrain nothing that an unknown absent from the difference
         // can absorb (`M = -m g d sin(theta)` only says what M is); any other quantity
         // they constrain must be absent from the difference.
         let depends = |r: &Rat, a: AtomId| crate::normal::subst::depends_on(r, a);
         let absorbs = |u: AtomId| is_unknown(u) && !depends(&target, u);
-        let constrained = super::solve::constrained_atoms(&left, &absorbs, signs);
+        let constrained = super::elimination::constrained_atoms(&left, &absorbs, signs);
         if constrained.iter().any(|c| depends(&target, *c)) {
             return None;
         }
@@ -242,23 +279,29 @@ impl Checker<'_, '_> {
             let steps = red.elim.as_ref().map_or_else(Vec::new, |e| e.steps.clone());
             (red.ra.clone(), red.rb.clone(), steps)
         });
-        let using = if red.via.is_empty() {
-            String::new()
-        } else {
-            format!(" (after using {})", cite(&red.via))
+        // `head (after using [a], line 3)tail`, or `headtail` when no fact was used.
+        let using = |head: &str, tail: &str| {
+            let t = Text::from(head);
+            let t = if red.via.is_empty() {
+                t
+            } else {
+                t.and(" (after using ").facts(&red.via).and(")")
+            };
+            t.and(tail)
         };
-        let notes = side_notes(red, (&ra, &rb), &using);
-        let with_notes = |mut d: Diagnostic, extra: Vec<String>| {
+        let notes = side_notes(red, (&ra, &rb));
+        let with_notes = |mut d: Diagnostic, extra: Vec<Note>| {
             d.notes = notes.iter().cloned().chain(extra).collect();
             d
         };
         if red.timed_out() {
             let d = Diagnostic::error(
                 Code::TimeBudget,
-                "not verified: the claim ran out of its time budget (see --timeout)",
+                "not verified: the claim ran out of its time budget",
                 span,
                 "undecided",
-            );
+            )
+            .reached(crate::diag::Reached::ClaimTime);
             return with_notes(d, Vec::new());
         }
         if let Some(e) = red
@@ -272,7 +315,7 @@ impl Checker<'_, '_> {
             let (mut d, extra) =
                 self.undetermined(&e.stuck, &e.target, (&ra, &rb), span, term.is_some());
             if let Some(why) = term {
-                d.message = format!("not verified: {}", why.text);
+                d.message = format!("not verified: {}", why.text).into();
                 d.mistake = Some(why.mistake);
                 if let Some(p) = d.primary.as_mut() {
                     p.1 = "changed this way, the step follows from the facts".into();
@@ -315,34 +358,26 @@ impl Checker<'_, '_> {
                     .or(diagnosis);
                 let d = Diagnostic::error(
                     Code::Refuted,
-                    format!("this step does not hold{using}"),
+                    using("this step does not hold", ""),
                     span,
                     why.as_ref()
                         .map_or("the two sides differ", |w| w.text.as_str()),
                 )
                 .with_mistake(why.map(|w| w.mistake));
-                let extra = counterexample.map(|c| {
-                    if c.values.is_empty() {
-                        format!("the left side is {}, the right side {}", c.lhs, c.rhs)
-                    } else {
-                        format!(
-                            "counterexample: at {} the left side is {} and the right side {}",
-                            c.assignment(),
-                            c.lhs,
-                            c.rhs
-                        )
-                    }
-                });
+                let extra = counterexample.map(|c| c.note());
                 with_notes(d, extra.into_iter().collect())
             }
             Verdict::Undecided { why } => {
                 let d = Diagnostic::error(
                     Code::NotVerified,
-                    format!("not verified{using}: rigor can neither prove nor refute this step"),
+                    using(
+                        "not verified",
+                        ": rigor can neither prove nor refute this step",
+                    ),
                     span,
                     "undecided",
                 );
-                with_notes(d, vec![why])
+                with_notes(d, vec![why.into()])
             }
             Verdict::Equal => with_notes(
                 Diagnostic::error(Code::NotVerified, "not verified", span, ""),
@@ -361,7 +396,7 @@ impl Checker<'_, '_> {
         (ra, rb): (&Rat, &Rat),
         span: Span,
         explained: bool,
-    ) -> (Diagnostic, Vec<String>) {
+    ) -> (Diagnostic, Vec<Note>) {
         let facts: Vec<Fact> = self.facts.iter().map(|k| k.fact.clone()).collect();
         let mut headline = format!("not verified: nothing in scope determines {}", names(stuck));
         let mut powers = Vec::new();
@@ -370,7 +405,7 @@ impl Checker<'_, '_> {
         let declared_unknown =
             |u: AtomId| atom::sym_name(u).is_some_and(|n| self.scope.unknowns.contains(&n));
         for u in stuck.iter().filter(|u| declared_unknown(**u)) {
-            if let Some((fact, n)) = super::solve::power_only(&facts, *u, &self.env.signs) {
+            if let Some((fact, n)) = super::elimination::power_only(&facts, *u, &self.env.signs) {
                 let name = unknown_name(*u);
                 headline = format!("not verified: {fact} gives {name} only through {name}^{n}");
                 powers.push(format!(
@@ -390,46 +425,48 @@ impl Checker<'_, '_> {
             },
         )
         .with_mistake((!root_missing).then_some(Mistake::MissingFact));
-        let mut notes = vec![format!(
-            "after eliminating what the facts give, left − right = {}",
-            plain(target)
-        )];
+        let mut notes = vec![Note::Remainder {
+            eliminated: true,
+            value: plain(target),
+        }];
         if root_missing {
-            notes.extend(powers);
+            notes.extend(powers.into_iter().map(Note::from));
         } else if !explained {
-            notes.push(format!(
-                "a fact about {} was needed but never given (or `by [..]` left it out)",
-                names(stuck)
-            ));
+            notes.push(
+                format!(
+                    "a fact about {} was needed but never given (or `by [..]` left it out)",
+                    names(stuck)
+                )
+                .into(),
+            );
         }
         if let Some(hint) = crate::decide::diagnose(ra, rb, target)
             .filter(|h| !root_missing && !explained && h.mistake != Mistake::Difference)
         {
-            notes.push(format!(
-                "if {} can take any value, {}",
-                names(stuck),
-                hint.text
-            ));
+            notes.push(format!("if {} can take any value, {}", names(stuck), hint.text).into());
         }
         (d, notes)
     }
 }
 
 /// Both sides as written, and (when facts were used) as the facts reduce them.
-fn side_notes(red: &Reduced, (ra, rb): (&Rat, &Rat), using: &str) -> Vec<String> {
+fn side_notes(red: &Reduced, (ra, rb): (&Rat, &Rat)) -> Vec<Note> {
     let mut notes = vec![
-        format!("left side:  {}", short(&plain(&red.a))),
-        format!("right side: {}", short(&plain(&red.b))),
+        Note::Side {
+            left: true,
+            value: short(&plain(&red.a)),
+        },
+        Note::Side {
+            left: false,
+            value: short(&plain(&red.b)),
+        },
     ];
     if !red.via.is_empty() {
-        notes.push(
-            format!(
-                "with the facts{using}: left {} , right {}",
-                plain(ra),
-                plain(rb)
-            )
-            .replace(" ,", ","),
-        );
+        notes.push(Note::Reduced {
+            using: red.via.clone(),
+            left: plain(ra),
+            right: plain(rb),
+        });
     }
     notes
 }
@@ -465,21 +502,22 @@ fn time_state(scope: &super::scope::Scope, a: AtomId, facts: &[Fact]) -> bool {
 }
 
 /// "not verified: the facts in scope ([IG]) relate a, b, …".
-fn tied_headline(tied: &[AtomId], left: &[Fact]) -> String {
-    let mut which: Vec<&str> = left
+fn tied_headline(tied: &[AtomId], left: &[Fact]) -> Text {
+    let mut which: Vec<Cited> = left
         .iter()
         .filter(|f| {
             tied.iter()
                 .any(|a| crate::normal::subst::depends_on(&f.value, *a))
         })
-        .map(|f| f.name.as_str())
+        .map(|f| f.name.clone())
         .collect();
     which.dedup();
-    format!(
-        "not verified: the facts in scope ({}) relate {}, so rigor cannot show that this step fails",
-        which.join(", "),
-        atom_names(tied)
-    )
+    Text::from("not verified: the facts in scope (")
+        .cited(&which)
+        .and(&format!(
+            ") relate {}, so rigor cannot show that this step fails",
+            atom_names(tied)
+        ))
 }
 
 fn atom_names(atoms: &[AtomId]) -> String {
@@ -513,7 +551,7 @@ fn tied_atoms(
     is_unknown: &dyn Fn(AtomId) -> bool,
     signs: &crate::normal::Assumptions,
 ) -> Vec<AtomId> {
-    let constrained = super::solve::constrained_atoms(left, is_unknown, signs);
+    let constrained = super::elimination::constrained_atoms(left, is_unknown, signs);
     let mut mine = Vec::new();
     crate::decide::symbols_in(target, &mut mine);
     mine.extend(

@@ -1,11 +1,11 @@
 //! `use [..] from "file" with …`: the verified claims of another file, instantiated,
 //! become facts here, with the conditions they were derived under.
 
+use super::elimination::Fact;
 use super::entry::Exports;
 use super::signs::{respects_sign, sign_of};
-use super::solve::Fact;
 use super::walk::{Checker, Known};
-use crate::diag::Code;
+use crate::diag::{Cited, Code, FactRef};
 use crate::lower::{Condition, Need};
 use crate::normal::atom::{self, AtomId};
 use crate::normal::print::plain;
@@ -29,8 +29,10 @@ impl Checker<'_, '_> {
     ) {
         let exports = match self.loader.import(&self.name.clone(), path) {
             Ok(e) => e,
-            Err(m) => {
-                self.error(Code::ImportFailed, m, path_span, "");
+            Err(mut d) => {
+                d.primary = Some((path_span, String::new()));
+                self.report.input_error = true;
+                self.report.diagnostics.push(d);
                 return self.import_failed(labels);
             }
         };
@@ -64,7 +66,9 @@ impl Checker<'_, '_> {
                 self.import_failed(std::slice::from_ref(l));
                 if exports.lets.contains_key(&l.name) && !self.scope.is_declared(&l.name) {
                     let line = self.line(l.span);
-                    let why = format!("which the `use` on line {line} did not bring in");
+                    let why = crate::diag::Text::from("which the `use` on line ")
+                        .line(line)
+                        .and(" did not bring in");
                     self.failed_names.insert(l.name.clone(), (line, why));
                 }
                 continue;
@@ -78,7 +82,7 @@ impl Checker<'_, '_> {
                     label: label.clone(),
                     fact: Fact {
                         value,
-                        name: format!("[{}]", l.name),
+                        name: Cited::of(FactRef::Label(l.name.clone())),
                     },
                     divisors,
                 });

@@ -17,13 +17,14 @@
 //! | `terms.rs` | the one term, as written, whose sign, factor or power explains a failure |
 //! | `relations.rs` | `!=`, `<`, `<=`, `>`, `>=` and `~=` links |
 //! | `signs.rs` | signs of differences and divisors, values against declared signs |
-//! | `solve.rs` | elimination of unknowns, contradictions, zero divisors |
+//! | `elimination.rs` | elimination of unknowns, contradictions, zero divisors |
 //! | `scope.rs`, `report.rs` | declarations; the results as data |
 
 mod claims;
 mod conditions;
 mod confirm;
 mod dims;
+pub mod elimination;
 mod entry;
 mod explain;
 mod imports;
@@ -33,7 +34,6 @@ pub mod report;
 mod roots;
 pub mod scope;
 mod signs;
-pub mod solve;
 mod step;
 mod terms;
 mod walk;
@@ -41,5 +41,5 @@ mod zeros;
 
 pub(crate) use entry::normalise;
 pub use entry::{check_source, Exports, ImportError, MemoryResolver, Options, Resolver, Source};
-pub use report::{cite, ClaimReport, FileReport, Justification, LinkReport, Status};
+pub use report::{ClaimReport, FileReport, Justification, LinkReport, Status};
 pub use signs::interval;

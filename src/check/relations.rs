@@ -56,9 +56,8 @@ impl Checker<'_, '_> {
             plain(&d)
         ));
         if let Verdict::NotEqual { .. } = decide(&red.ra, &red.rb, signs) {
-            diag.notes.push(
-                "the sides are not identical, but `!=` claims they differ for every allowed value"
-                    .into(),
+            diag.add_note(
+                "the sides are not identical, but `!=` claims they differ for every allowed value",
             );
         }
         Err(diag)
@@ -98,7 +97,7 @@ impl Checker<'_, '_> {
         )
         .note(format!("left − right = {}", plain(&d)));
         if let Some(e) = red.elim.as_ref().filter(|e| !e.stuck.is_empty()) {
-            diag.notes.push(format!(
+            diag.add_note(format!(
                 "the facts do not determine {}",
                 super::explain::names(&e.stuck)
             ));
@@ -112,10 +111,10 @@ impl Checker<'_, '_> {
         match violated {
             Some(c) => {
                 diag.message =
-                    format!("`{op}` is false for some values allowed by the declared signs");
-                diag.notes.push(c);
+                    format!("`{op}` is false for some values allowed by the declared signs").into();
+                diag.add_note(c);
             }
-            None => diag.notes.push(format!("its sign is {}", describe(sign))),
+            None => diag.add_note(format!("its sign is {}", describe(sign))),
         }
         Err(diag)
     }
@@ -126,20 +125,20 @@ impl Checker<'_, '_> {
         let signs = &self.env.signs;
         let is_unknown = |x: AtomId| unknown_atom(&self.scope, x);
         let steps = red.elim.as_ref().map_or(&[][..], |e| &e.steps[..]);
-        let left: Vec<super::solve::Fact> = red
+        let left: Vec<super::elimination::Fact> = red
             .scope
             .iter()
             .filter_map(|f| {
-                super::solve::apply_steps(&f.value, steps, signs)
+                super::elimination::apply_steps(&f.value, steps, signs)
                     .ok()
                     .filter(|v| !v.is_zero())
-                    .map(|value| super::solve::Fact {
+                    .map(|value| super::elimination::Fact {
                         value,
                         name: f.name.clone(),
                     })
             })
             .collect();
-        let constrained = super::solve::constrained_atoms(&left, &is_unknown, signs);
+        let constrained = super::elimination::constrained_atoms(&left, &is_unknown, signs);
         let mut mine = Vec::new();
         crate::decide::symbols_in(d, &mut mine);
         mine.iter().any(|a| constrained.contains(a))
@@ -159,7 +158,7 @@ impl Checker<'_, '_> {
         let signs = &self.env.signs;
         let is_unknown = |x: AtomId| unknown_atom(&self.scope, x);
         let value = |r: &Rat| {
-            super::solve::reduce_fully(r, &red.used, &is_unknown, signs, input.deadline)
+            super::elimination::reduce_fully(r, &red.used, &is_unknown, signs, input.deadline)
                 .unwrap_or_else(|_| r.clone())
         };
         let (va, vb) = (value(&red.a), value(&red.b));

@@ -1,7 +1,7 @@
 //! What the checker found, as data: per file, per statement and per link.
 //! Renderers read this; nothing here decides truth.
 
-use crate::diag::Diagnostic;
+use crate::diag::{cite, Cited, Diagnostic, FactRef};
 use crate::syntax::ast::{File, RelOp, Span};
 
 /// How a verified link was justified.
@@ -9,10 +9,10 @@ use crate::syntax::ast::{File, RelOp, Span};
 pub enum Justification {
     /// `A − B` normalises to zero.
     Identity,
-    /// Zero after eliminating unknowns with these facts (labels, or `line N` for unlabelled ones).
-    Facts(Vec<String>),
+    /// Zero after eliminating unknowns with these facts.
+    Facts(Vec<FactRef>),
     /// An inequality whose sign follows from the declared signs (after any elimination).
-    Signs(Vec<String>),
+    Signs(Vec<FactRef>),
     /// `~=`: the ratio rounds to 1 at the precision written.
     Approx,
     /// `~=` with small quantities: the sides agree up to this order in them.
@@ -22,22 +22,6 @@ pub enum Justification {
         /// The small quantities, by name.
         of: Vec<String>,
     },
-}
-
-/// Facts as cited in messages: `[Fx], [MG], line 12` (labels in brackets, unlabelled
-/// facts by their line).
-pub fn cite(facts: &[String]) -> String {
-    facts
-        .iter()
-        .map(|f| {
-            if f.starts_with("line ") {
-                f.clone()
-            } else {
-                format!("[{f}]")
-            }
-        })
-        .collect::<Vec<_>>()
-        .join(", ")
 }
 
 impl std::fmt::Display for Justification {
@@ -135,7 +119,7 @@ pub struct Solved {
     pub value: String,
     /// The fact, as cited: `[Fx]`, `[noslip]''` (the constraint differentiated twice),
     /// `line 12`.
-    pub fact: String,
+    pub fact: Cited,
     /// The divisor of the solution, when the signs do not make it nonzero.
     pub divisor: Option<String>,
 }
@@ -144,7 +128,7 @@ pub struct Solved {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Multiple {
     /// The fact, as cited.
-    pub fact: String,
+    pub fact: Cited,
     /// The fact's left side minus its right side (after the substitutions).
     pub value: String,
     /// The factor.

@@ -15,7 +15,7 @@
 
 use super::report::{FileReport, Status};
 use crate::diag::Code;
-use crate::diag::{Diagnostic, Severity};
+use crate::diag::{Diagnostic, Severity, Text};
 use crate::syntax::ast::{BodyDef, Expr, ExprKind, File, Item, Span, StmtKind};
 
 /// A change to the file that may be the fix of the first mistake.
@@ -24,9 +24,9 @@ struct Change {
     at: Span,
     text: String,
     /// What the change says, for the notes ("I_O = m L^2/3, as line 41 states").
-    what: String,
+    what: Text,
     /// Where the mistake probably is, for the first error's note.
-    root: String,
+    root: Text,
 }
 
 /// Turns later failures that the first mistake explains into notes. `recheck` checks a
@@ -75,7 +75,7 @@ pub(super) fn one_mistake(
                 .iter()
                 .find(|l| l.status == Status::Failed)
                 .map_or(span, |l| l.span);
-            lines.push(report.claims[i].line.to_string());
+            lines.push(report.claims[i].line);
             report.diagnostics.retain(|d| {
                 !(d.severity == Severity::Error
                     && d.primary
@@ -89,10 +89,10 @@ pub(super) fn one_mistake(
             }
             let mut d = Diagnostic::error(
                 Code::Consequence,
-                format!(
-                    "not counted as a second mistake: this step holds with {}, so it fails because of the mistake reported at line {first_line}",
-                    change.what
-                ),
+                Text::from("not counted as a second mistake: this step holds with ")
+                    .then(&change.what)
+                    .and(", so it fails because of the mistake reported at line ")
+                    .line(first_line),
                 at,
                 "follows from the first mistake",
             );
@@ -106,12 +106,13 @@ pub(super) fn one_mistake(
                     .is_some_and(|(s, _)| s.start >= claim_span.start && s.start < claim_span.end)
         }) {
             let s = if lines.len() == 1 { "" } else { "s" };
-            d.notes.push(format!(
-                "with {}, this step and the step{s} at line{s} {} hold: {}",
-                change.what,
-                lines.join(", "),
-                change.root
-            ));
+            let mut t = Text::from("with ")
+                .then(&change.what)
+                .and(&format!(", this step and the step{s} at line{s} "));
+            for (i, l) in lines.iter().enumerate() {
+                t = if i == 0 { t } else { t.and(", ") }.line(*l);
+            }
+            d.add_note(t.and(" hold: ").then(&change.root));
         }
         report
             .diagnostics
@@ -152,21 +153,23 @@ fn changes(ast: &File, report: &FileReport, first: usize, text: &str) -> Vec<Cha
         (&chain.first.kind, chain.links.last(), rest_holds)
     {
         if let Some((name, value)) = lets.iter().find(|(n, _)| &n.name == x) {
-            let mut root = format!(
-                "check the definition of {x} at line {}",
-                line_of(name.span.start)
-            );
+            let mut root = Text::from(format!("check the definition of {x} at line "))
+                .line(line_of(name.span.start));
             if let Some((b, _, span)) = bodies.iter().find(|(b, _, _)| mentions(value, &b.name)) {
-                root.push_str(&format!(
-                    " and the body {} it integrates over (line {}): its bounds or mass element",
-                    b.name,
-                    line_of(span.start)
-                ));
+                root = root
+                    .and(&format!(
+                        " and the body {} it integrates over (line ",
+                        b.name
+                    ))
+                    .line(line_of(span.start))
+                    .and("): its bounds or mass element");
             }
             out.push(Change {
                 at: value.span,
                 text: format!("({})", said(&last.rhs)),
-                what: format!("{x} = {}, as line {} states", said(&last.rhs), claim.line),
+                what: Text::from(format!("{x} = {}, as line ", said(&last.rhs)))
+                    .line(claim.line)
+                    .and(" states"),
                 root,
             });
         }
@@ -184,12 +187,13 @@ fn changes(ast: &File, report: &FileReport, first: usize, text: &str) -> Vec<Cha
             out.push(Change {
                 at: Span::new(end, end),
                 text: ", centred".into(),
-                what: format!("the body {} declared `centred`", b.name),
-                root: format!(
-                    "the mistake is probably the declaration of {} at line {} (its origin is not declared the centre of mass)",
-                    b.name,
-                    line_of(span.start)
-                ),
+                what: format!("the body {} declared `centred`", b.name).into(),
+                root: Text::from(format!(
+                    "the mistake is probably the declaration of {} at line ",
+                    b.name
+                ))
+                .line(line_of(span.start))
+                .and(" (its origin is not declared the centre of mass)"),
             });
         }
     }

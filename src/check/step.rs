@@ -3,12 +3,12 @@
 //! for each relation. Explaining a failure lives in `explain.rs`, inequalities and
 //! `~=` in `relations.rs`.
 
+use super::elimination::{apply_steps, contradiction, eliminate, Elimination, Fact};
 use super::report::{Justification, Status};
-use super::solve::{apply_steps, contradiction, eliminate, Elimination, Fact};
 use super::walk::{unknown_atom, Checker, Known};
 use crate::clock::Deadline;
-use crate::diag::Code;
 use crate::diag::Diagnostic;
+use crate::diag::{Cited, Code, FactRef, Text};
 use crate::lower::{Condition, Need};
 use crate::normal::atom::AtomId;
 use crate::normal::Rat;
@@ -71,10 +71,10 @@ pub(super) struct Reduced {
     pub ra: Rat,
     /// The right side after the elimination's steps.
     pub rb: Rat,
-    /// The labels of the facts the elimination used, in order, each once.
-    pub via: Vec<String>,
-    /// The names of the facts the elimination used, as cited in `Fact::name`.
-    pub used_names: Vec<String>,
+    /// The facts the elimination used, in order, each once.
+    pub via: Vec<FactRef>,
+    /// The facts the elimination used, as cited in `Fact::name`.
+    pub used_names: Vec<Cited>,
 }
 
 impl Reduced {
@@ -160,7 +160,11 @@ impl Checker<'_, '_> {
         if let Some(c) = red.elim.as_ref().and_then(|e| e.contradiction.as_ref()) {
             return Err(Diagnostic::error(
                 Code::FalseFacts,
-                format!("the facts in scope contradict each other: after eliminating unknowns, {c} says a nonzero quantity is zero"),
+                Text::from(
+                    "the facts in scope contradict each other: after eliminating unknowns, ",
+                )
+                .cited(std::slice::from_ref(c))
+                .and(" says a nonzero quantity is zero"),
                 span,
                 "checked against contradictory facts",
             )
@@ -223,11 +227,17 @@ impl Checker<'_, '_> {
                     span,
                     "a denominator here is zero once the facts are used",
                 ),
-                e => Diagnostic::error(Code::SizeLimit, e.to_string(), span, ""),
+                e => {
+                    let mut d = Diagnostic::error(Code::SizeLimit, e.to_string(), span, "");
+                    if let crate::normal::NormError::Limit(l) = e {
+                        d.reached = super::walk::reached(l);
+                    }
+                    d
+                }
             })?)
         };
         let steps = elim.as_ref().map_or(&[][..], |e| &e.steps[..]);
-        let used_names: Vec<String> = steps
+        let used_names: Vec<Cited> = steps
             .iter()
             .map(|s| s.fact.clone())
             .chain(elim.as_ref().and_then(|e| e.multiple_of.clone()))
@@ -239,12 +249,7 @@ impl Checker<'_, '_> {
         let mut seen = HashSet::new();
         let via = used_names
             .iter()
-            .map(|f| {
-                f.trim_end_matches('\'')
-                    .trim_start_matches('[')
-                    .trim_end_matches(']')
-                    .to_string()
-            })
+            .map(|f| f.fact.clone())
             .filter(|x| seen.insert(x.clone()))
             .collect();
         Ok(Some(Reduced {
@@ -271,7 +276,7 @@ impl Checker<'_, '_> {
             None => Ok(()),
             Some(c) => Err(Diagnostic::error(
                 Code::FalseFacts,
-                format!("the facts in scope contradict each other: {c}"),
+                Text::from("the facts in scope contradict each other: ").then(&c),
                 span,
                 "checked against contradictory facts",
             )
@@ -323,7 +328,7 @@ fn working(
         .steps
         .iter()
         .map(|s| Solved {
-            unknown: super::solve::unknown_name(s.unknown),
+            unknown: super::elimination::unknown_name(s.unknown),
             value: plain(&s.value),
             fact: s.fact.clone(),
             divisor: s.divisor.as_ref().map(plain),

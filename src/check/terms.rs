@@ -2,7 +2,7 @@
 //! a side (its sign, a constant factor, one power of a symbol) makes the link hold after
 //! the facts are used, the diagnosis says which term and how.
 
-use super::solve::{apply_steps, Step};
+use super::elimination::{apply_steps, Step};
 use super::step::LinkInput;
 use super::walk::Checker;
 use crate::decide::Diagnosis;

@@ -2,20 +2,20 @@
 //! bodies, givens and constraints. Claims are in `claims.rs`, imports in `imports.rs`,
 //! deciding a link in `step.rs`.
 
+use super::elimination::Fact;
 use super::entry::{Exports, Loader};
 use super::report::FileReport;
 use super::scope::{undeclared, Decl, Scope};
 use super::signs::sign_of;
-use super::solve::Fact;
 use crate::calculus::{self, Wrt};
 use crate::diag::Code;
-use crate::diag::{Diagnostic, Severity};
+use crate::diag::{Cited, Diagnostic, FactRef, Reached, Severity, Text};
 use crate::lower::{build_body, sign_of_decl, Condition, Env, LowerError, Lowerer};
 use crate::normal::atom::{self, AtomId};
 use crate::normal::print::plain;
 use crate::normal::{Rat, Sign};
 use crate::syntax::ast::{BodyDef, Chain, Expr, File, Item, Label, RelOp, Span, StmtKind};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// Facts in scope past which a new given is not checked against all the others for a
 /// contradiction (each check eliminates them all); claims still refuse contradictory
@@ -34,6 +34,17 @@ pub(super) struct Known {
     pub divisors: Vec<Condition>,
 }
 
+/// The limit of a refusal at one of the engine's limits, as a diagnostic records it.
+pub(super) fn reached(l: crate::normal::Limit) -> Option<Reached> {
+    use crate::normal::Limit;
+    match l {
+        Limit::Terms(n) => Some(Reached::Terms(n)),
+        Limit::Digits(n) => Some(Reached::Digits(n)),
+        Limit::Time => Some(Reached::ClaimTime),
+        _ => None,
+    }
+}
+
 /// Walks one file.
 pub struct Checker<'l, 'o> {
     pub(super) report: FileReport,
@@ -49,11 +60,13 @@ pub struct Checker<'l, 'o> {
     pub(super) failed_labels: HashMap<String, usize>,
     /// The first given set aside because it contradicted the facts before it, as
     /// messages name it (`[two] (line 7)`).
-    pub(super) contradicted: Option<String>,
+    pub(super) contradicted: Option<Text>,
     /// Names already reported: undeclared ones, and those a failed `use` would have
     /// defined (a `let` of the other file), with why (`undeclared (line 7)`). A later
     /// use is not checked, rather than a second error for the same mistake.
-    pub(super) failed_names: HashMap<String, (usize, String)>,
+    pub(super) failed_names: HashMap<String, (usize, Text)>,
+    /// The failed names whose later use was already noted as not checked (once each).
+    pub(super) noted_uses: HashSet<String>,
     pub(super) exports: Exports,
     body_coords: HashMap<String, Vec<String>>,
     /// Set when lowering ran out of time (the link is undecided).
@@ -95,6 +108,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             failed_labels: HashMap::new(),
             contradicted: None,
             failed_names: HashMap::new(),
+            noted_uses: HashSet::new(),
             exports: Exports::default(),
             body_coords: HashMap::new(),
             timed_out: false,
@@ -172,7 +186,7 @@ impl<'l, 'o> Checker<'l, 'o> {
                 .diagnostics
                 .iter()
                 .find(|d| d.severity == Severity::Error)
-                .map(|d| d.message.clone());
+                .map(|d| d.message.to_string());
         }
         self.report.env = std::mem::take(&mut self.env);
         (self.report, self.exports)
@@ -193,8 +207,8 @@ impl<'l, 'o> Checker<'l, 'o> {
         let bad = undeclared(e, &self.scope, &lookup);
         for (name, span) in &bad {
             if let Some((_, why)) = self.failed_names.get(name) {
-                let msg = format!("not checked: it uses `{name}`, {why}");
-                if !self.report.diagnostics.iter().any(|d| d.message == msg) {
+                let msg = Text::from(format!("not checked: it uses `{name}`, ")).then(why);
+                if self.noted_uses.insert(name.clone()) {
                     self.note_not_checked(msg, *span);
                 }
                 continue;
@@ -209,7 +223,10 @@ impl<'l, 'o> Checker<'l, 'o> {
             let line = self.line(*span);
             self.failed_names.insert(
                 name.clone(),
-                (line, format!("which is undeclared (line {line})")),
+                (
+                    line,
+                    Text::from("which is undeclared (line ").line(line).and(")"),
+                ),
             );
         }
         bad.is_empty()
@@ -237,20 +254,26 @@ impl<'l, 'o> Checker<'l, 'o> {
             // Undecided, not bad input: the claim fails, the file is not malformed.
             self.timed_out = true;
             // Said as what it is (undecided), like the summary and the exit status.
-            self.report.diagnostics.push(Diagnostic::error(
-                Code::TimeBudget,
-                "not verified: the claim ran out of its time budget (see --timeout)",
-                e.span,
-                "undecided",
-            ));
+            self.report.diagnostics.push(
+                Diagnostic::error(
+                    Code::TimeBudget,
+                    "not verified: the claim ran out of its time budget",
+                    e.span,
+                    "undecided",
+                )
+                .reached(Reached::ClaimTime),
+            );
             return;
         }
-        let code = if e.limit().is_some() {
-            Code::SizeLimit
-        } else {
-            Code::NoValue
-        };
-        self.error(code, e.to_string(), e.span, "");
+        match e.limit() {
+            Some(l) => {
+                let mut d = Diagnostic::error(Code::SizeLimit, e.to_string(), e.span, "");
+                d.reached = reached(l);
+                self.report.diagnostics.push(d);
+                self.report.input_error = true;
+            }
+            None => self.error(Code::NoValue, e.to_string(), e.span, ""),
+        }
     }
 
     fn declare(&mut self, name: &str, span: Span, d: Decl) -> bool {
@@ -299,11 +322,11 @@ impl<'l, 'o> Checker<'l, 'o> {
         Some(l.name.clone())
     }
 
-    pub(super) fn fact_name(&self, label: &Option<String>, span: Span) -> String {
-        match label {
-            Some(l) => format!("[{l}]"),
-            None => format!("line {}", self.line(span)),
-        }
+    pub(super) fn fact_name(&self, label: &Option<String>, span: Span) -> Cited {
+        Cited::of(match label {
+            Some(l) => FactRef::Label(l.clone()),
+            None => FactRef::Line(self.line(span)),
+        })
     }
 
     fn statement(&mut self, kind: &StmtKind, span: Span) {
@@ -501,20 +524,20 @@ impl<'l, 'o> Checker<'l, 'o> {
             return true;
         }
         let values: Vec<Fact> = self.facts.iter().map(|k| k.fact.clone()).collect();
-        let Some(why) = super::solve::contradiction(&values, &self.env.signs) else {
+        let Some(why) = super::elimination::contradiction(&values, &self.env.signs) else {
             return true;
         };
         let line = self.line(span);
         let name = self.facts[before].label.as_ref().map_or_else(
-            || format!("the given at line {line}"),
-            |l| format!("[{l}] (line {line})"),
+            || Text::from("the given at line ").line(line),
+            |l| Text::label_at(l, line),
         );
         self.contradicted.get_or_insert(name);
         self.facts.truncate(before);
         self.report.diagnostics.push(
             Diagnostic::error(
                 Code::FalseFacts,
-                format!("the facts contradict each other: {why}"),
+                Text::from("the facts contradict each other: ").then(&why),
                 span,
                 "no real values satisfy the facts with this one",
             )
@@ -599,7 +622,10 @@ impl<'l, 'o> Checker<'l, 'o> {
                         label: label.clone(),
                         fact: Fact {
                             value: v,
-                            name: format!("{name}{}", "'".repeat(k)),
+                            name: Cited {
+                                fact: name.fact.clone(),
+                                derivative: k,
+                            },
                         },
                         divisors: divs.clone(),
                     });

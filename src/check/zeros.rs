@@ -15,7 +15,8 @@
 //!
 //! Every consequence is an exact identity over the reals; nothing here is sampled.
 
-use super::solve::{zero_by_facts, Fact};
+use super::elimination::{zero_by_facts, Fact};
+use crate::diag::Cited;
 use crate::normal::atom;
 use crate::normal::{Assumptions, Poly, Rat, Sign};
 
@@ -129,11 +130,11 @@ pub fn consequences(facts: &[Fact], signs: &Assumptions) -> Vec<Fact> {
     if facts.len() > MAX_FACTS {
         return out;
     }
-    let push = |value: Rat, name: &str, out: &mut Vec<Fact>| {
+    let push = |value: Rat, name: &Cited, out: &mut Vec<Fact>| {
         if !value.is_zero() && !out.iter().any(|f| f.value == value) {
             out.push(Fact {
                 value,
-                name: name.to_string(),
+                name: name.clone(),
             });
         }
     };

@@ -245,7 +245,7 @@ fn mark_one(
 ) -> Row {
     let name = path.display().to_string();
     match rigor::files::read(path, options.max_file_size) {
-        Err(e) => rigor::mark::unreadable(&name, e, expected),
+        Err(e) => rigor::mark::unreadable(&name, super::read_error(&e), expected),
         Ok(text) => rigor::mark::mark(
             reference,
             expected,

@@ -61,20 +61,29 @@ fn report_lower(e: &LowerError, what: &str, src: &str) {
     err!("{}", diag::render(&d, what, src));
 }
 
-/// Adds the flag that sets it to each message that is exactly the library's refusal at
-/// one of this thread's size limits (the library says the limit, not the flag).
+/// Adds the flag that raises it to each refusal at one of rigor's limits (the library
+/// says the limit, not the flag).
 fn name_the_flags(reports: &mut [FileReport]) {
-    use rigor::normal::{limits, Limit, NormError};
-    let now = limits::current();
-    let refusals = [Limit::Terms(now.max_terms), Limit::Digits(now.max_digits)]
-        .map(|l| (NormError::Limit(l).to_string(), flag_of(l)));
+    use rigor::diag::Reached;
     for d in reports.iter_mut().flat_map(|r| r.diagnostics.iter_mut()) {
-        if let Some((_, flag)) = refusals
-            .iter()
-            .find(|(m, _)| d.code == Code::SizeLimit && d.message == *m)
-        {
-            d.message.push_str(flag);
-        }
+        let flag = match d.reached {
+            Some(Reached::Terms(_)) => " (see --max-terms)",
+            Some(Reached::Digits(_)) => " (see --max-digits)",
+            Some(Reached::ClaimTime) => " (see --timeout)",
+            Some(Reached::FileBudget) => " (see --budget)",
+            Some(Reached::FileSize(_)) => " (see --max-file-size)",
+            _ => continue,
+        };
+        d.message.push_str(flag);
+    }
+}
+
+/// Why a file could not be read, with the flag that raises the size limit when that is
+/// why.
+pub(crate) fn read_error(e: &rigor::files::ReadError) -> String {
+    match e {
+        rigor::files::ReadError::TooLarge { .. } => format!("{e} (see --max-file-size)"),
+        _ => e.to_string(),
     }
 }
 
@@ -501,15 +510,25 @@ pub fn check(
     }
 }
 
+/// How `rigor latex` and `rigor markdown` write a document.
+pub struct DocumentArgs<'a> {
+    /// Where to write it (standard output when `None`).
+    pub out: Option<&'a Path>,
+    /// The title of a book (a folder).
+    pub title: Option<&'a str>,
+    /// LaTeX, else Markdown.
+    pub latex: bool,
+    /// Whether to fill in the work the files skipped.
+    pub detail: rigor::render::Detail,
+}
+
 /// `rigor latex` / `rigor markdown`: renders even when a step fails (marked), exit 1 then.
 /// A folder gives one book of all its files. With [`Detail::Steps`](rigor::render::Detail)
 /// (`--steps`) the work the files skipped is filled in.
-pub fn document(
-    file: &Path,
-    (out, title): (Option<&Path>, Option<&str>),
-    (latex, detail): (bool, rigor::render::Detail),
-    opts: &ParseOptions,
-) -> u8 {
+pub fn document(file: &Path, args: &DocumentArgs<'_>, opts: &ParseOptions) -> u8 {
+    let DocumentArgs {
+        out, latex, detail, ..
+    } = *args;
     let options = rigor::check::Options {
         parse: *opts,
         // The limits `main` installed on this thread, for the checking threads too.
@@ -519,7 +538,7 @@ pub fn document(
     let mut reports = rigor::files::check_paths(&[file.to_path_buf()], &options);
     if file.is_dir() {
         return match rigor::files::in_book_order(file, reports) {
-            Ok(reports) => book(&reports, (out, title), (latex, detail)),
+            Ok(reports) => book(&reports, args),
             Err(e) => {
                 errln!("error: {e}");
                 2
@@ -557,11 +576,13 @@ pub fn document(
 
 /// A book of several files (already in order): written like one document; the exit
 /// status of the worst file.
-fn book(
-    reports: &[FileReport],
-    (out, title): (Option<&Path>, Option<&str>),
-    (latex, detail): (bool, rigor::render::Detail),
-) -> u8 {
+fn book(reports: &[FileReport], args: &DocumentArgs<'_>) -> u8 {
+    let DocumentArgs {
+        out,
+        title,
+        latex,
+        detail,
+    } = *args;
     let title = title.unwrap_or("Worked solutions");
     let text = if latex {
         rigor::render::latex::book_with(reports, title, detail)
@@ -646,7 +667,7 @@ pub fn lint(
                 &options,
             )),
             Err(e) => {
-                errln!("error: cannot read {name}: {e}");
+                errln!("error: cannot read {name}: {}", read_error(&e));
                 bad_input = true;
             }
         }

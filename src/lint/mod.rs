@@ -264,7 +264,7 @@ impl Scope {
                 for p in &b.placed {
                     let mut report = verdict(&checked, p);
                     for d in &mut report.diagnostics {
-                        d.message = document_lines(&d.message, &b.deriv, &b.placed, doc);
+                        document_lines(d, &b.deriv, &b.placed, doc);
                     }
                     let needs = report.verdict == Verdict::NeedsContext;
                     let tail = needs.then(|| verified_tail(&checked, p)).flatten();
@@ -390,9 +390,11 @@ pub fn lint(name: &str, doc: &str, kind: DocKind, opts: &Options) -> LintReport 
     report
 }
 
-/// A message about the derivation made from the document, with its `line N` (lines of
-/// that derivation) turned into the lines of the document they came from.
-fn document_lines(message: &str, deriv: &str, placed: &[Placed], doc: &LineIndex<'_>) -> String {
+/// A diagnostic about the derivation made from the document, with the lines it cites
+/// (lines of that derivation) turned into the lines of the document they came from. A
+/// line of the `rigor:` statements is not a line of the notes: a fact on one is not
+/// cited.
+fn document_lines(d: &mut Diagnostic, deriv: &str, placed: &[Placed], doc: &LineIndex<'_>) {
     let doc_line = |n: usize| -> Option<usize> {
         let line_start = deriv
             .split_inclusive('\n')
@@ -408,35 +410,8 @@ fn document_lines(message: &str, deriv: &str, placed: &[Placed], doc: &LineIndex
             .1;
         Some(doc.line_col(at).0)
     };
-    let mut out = String::new();
-    let mut said: Vec<String> = Vec::new();
-    let mut rest = message;
-    while let Some(i) = rest.find("line ") {
-        out.push_str(&rest[..i + 5]);
-        rest = &rest[i + 5..];
-        let digits = rest.bytes().take_while(u8::is_ascii_digit).count();
-        let mapped = rest[..digits].parse().ok().and_then(doc_line);
-        let primes = rest[digits..].bytes().take_while(|b| *b == b'\'').count();
-        let cited = mapped.map(|l| format!("{l}{}", "'".repeat(primes)));
-        match cited {
-            // A line the notes cite twice (a claim and what it states) is named once;
-            // a line of the `rigor:` statements is not a line of the notes.
-            Some(c) if !said.contains(&c) => {
-                out.push_str(&c);
-                said.push(c);
-            }
-            _ if out.ends_with(", line ") => out.truncate(out.len() - ", line ".len()),
-            _ if out.ends_with("(line ") && rest[digits + primes..].starts_with(", ") => {
-                out.truncate(out.len() - "line ".len());
-                rest = &rest[digits + primes + 2..];
-                continue;
-            }
-            _ => out.push_str(&rest[..digits + primes]),
-        }
-        rest = &rest[digits + primes..];
-    }
-    out.push_str(rest);
-    out
+    d.message = d.message.renumber(&doc_line);
+    d.notes = d.notes.iter().map(|n| n.renumber(&doc_line)).collect();
 }
 
 /// Writes a chain into the derivation: its new symbols declared, then as a `let` (a
@@ -758,7 +733,7 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
                 return report(Verdict::Failed, d);
             }
             for x in d.iter_mut().filter(|x| refuted(x)) {
-                x.message = later_needs(p, x);
+                x.message = later_needs(p, x).into();
                 x.code = Code::NotVerified;
                 x.mistake = None;
             }
@@ -772,7 +747,7 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
         // needs that definition, whatever the facts it was tried with relate.
         for x in &mut d {
             if later_link(p, x).is_some_and(|l| !l.fresh.is_empty()) {
-                x.message = later_needs(p, x);
+                x.message = later_needs(p, x).into();
             }
         }
         first_diags.extend(d);
@@ -883,7 +858,7 @@ fn later_is_a_mistake(p: &Placed, d: &Diagnostic) -> bool {
     let Some(link) = later_link(p, d) else {
         return true;
     };
-    link.firm || (link.fresh.is_empty() && !d.message.contains("(after using"))
+    link.firm || (link.fresh.is_empty() && !d.message.cites_facts())
 }
 
 /// Why a later link that does not hold needs context.

@@ -156,7 +156,7 @@ impl Checked {
                 r.diagnostics
                     .iter()
                     .filter(inside)
-                    .map(|d| d.message.clone())
+                    .map(|d| d.message.to_string())
                     .next()
                     .unwrap_or_else(|| "it uses names the reference does not declare".into()),
             ),

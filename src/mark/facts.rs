@@ -6,7 +6,7 @@
 
 use super::names::{self, Terms};
 use crate::check::{FileReport, Justification, Status};
-use crate::diag::{FailureKind, LineIndex};
+use crate::diag::{FactRef, FailureKind, LineIndex};
 use crate::syntax::ast::{By, Chain, Expr, ExprKind, Item, Link, StmtKind};
 use crate::syntax::print;
 use std::collections::HashSet;
@@ -88,9 +88,9 @@ pub fn cited(status: &Status) -> Option<Vec<Cite>> {
     Some(
         facts
             .iter()
-            .map(|f| match f.strip_prefix("line ").map(str::parse::<usize>) {
-                Some(Ok(n)) => Cite::Line(n),
-                _ => Cite::Label(f.clone()),
+            .map(|f| match f {
+                FactRef::Line(n) => Cite::Line(*n),
+                FactRef::Label(l) => Cite::Label(l.clone()),
             })
             .collect(),
     )

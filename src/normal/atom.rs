@@ -12,7 +12,25 @@ use std::sync::{Arc, LazyLock, OnceLock, RwLock};
 
 /// The interned id of an atom. Ids order monomials inside one process only;
 /// printers order by [`cmp_atoms`], which depends on content alone.
-pub type AtomId = u32;
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
+pub struct AtomId(u32);
+
+impl AtomId {
+    /// The largest id (a bound for packing, never interned).
+    pub const MAX: AtomId = AtomId(u32::MAX);
+
+    /// The id as a number (the order atoms were interned in).
+    pub fn index(self) -> u32 {
+        self.0
+    }
+
+    /// The id numbered `i`: for the packed monomials, which store ids as numbers, and
+    /// for tests of polynomial arithmetic, whose atoms need no meaning. An id not
+    /// interned names no atom (`atom::get` of it reads as the symbol `?`).
+    pub fn from_index(i: u32) -> AtomId {
+        AtomId(i)
+    }
+}
 
 /// An indeterminate of the normal form.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
@@ -38,7 +56,7 @@ pub enum Atom {
     /// `b^e` with a symbolic exponent and a base of unknown sign.
     Pow(Rat, Rat),
     /// A sum kept as one factor so that its large powers are not expanded
-    /// ([`power::keep`](super::power::keep)): its value is `p`, a primitive polynomial of
+    /// (`power::keep`): its value is `p`, a primitive polynomial of
     /// two or more terms with a positive leading coefficient and no monomial factor.
     Factor(Poly),
     /// `∫ x₁^e₁ ⋯ xₙ^eₙ dm` over the abstract body named: every coordinate with its exponent.
@@ -88,9 +106,10 @@ const SEGMENTS: usize = 27;
 
 /// The segment and the place in it of `id`.
 fn slot(id: AtomId) -> (usize, usize) {
-    let j = id as usize / SEGMENT + 1;
+    let id = id.0 as usize;
+    let j = id / SEGMENT + 1;
     let k = (usize::BITS - 1 - j.leading_zeros()) as usize;
-    (k, id as usize - SEGMENT * ((1 << k) - 1))
+    (k, id - SEGMENT * ((1 << k) - 1))
 }
 
 /// The entry of `id`, if it was interned.
@@ -138,7 +157,7 @@ pub fn intern(a: Atom) -> AtomId {
     if let Some(id) = t.map.get(&a) {
         return *id;
     }
-    let id = t.len;
+    let id = AtomId(t.len);
     let depth = depth_of(&a);
     let rule = rule_of(&a);
     let atom = Arc::new(a);
@@ -267,14 +286,14 @@ mod tests {
     fn slots_number_every_id_once_in_order() {
         let mut next = (0, 0);
         for id in 0..100_000u32 {
-            let (k, i) = slot(id);
+            let (k, i) = slot(AtomId(id));
             assert!(i < SEGMENT << k, "{id}");
             if (k, i) != next {
                 assert_eq!((k, i, next.1), (next.0 + 1, 0, SEGMENT << next.0), "{id}");
             }
             next = (k, i + 1);
         }
-        assert!(slot(u32::MAX).0 < SEGMENTS);
+        assert!(slot(AtomId::MAX).0 < SEGMENTS);
     }
 
     #[test]

@@ -180,7 +180,7 @@ fn coprime_by_evaluation(a: &Poly, b: &Poly) -> bool {
             return true;
         }
         let value = |x: AtomId| -> u64 {
-            let h = (u64::from(x) + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+            let h = (u64::from(x.index()) + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15)
                 ^ attempt.wrapping_mul(0xD6E8_FEB8_6659_FD93);
             h % (P - 2) + 2
         };
@@ -525,7 +525,13 @@ mod tests {
             Poly::from_terms(
                 ts.into_iter()
                     .filter_map(|(m, c)| {
-                        Some((Mono::from_pairs(m)?, Q::from_integer(BigInt::from(c))))
+                        let m = m
+                            .into_iter()
+                            .map(|(a, e)| (crate::normal::AtomId::from_index(a), e));
+                        Some((
+                            Mono::from_pairs(m.collect())?,
+                            Q::from_integer(BigInt::from(c)),
+                        ))
                     })
                     .collect(),
             )

@@ -4,23 +4,23 @@
 //! into these values and reports errors with spans.
 
 pub mod atom;
-pub mod func;
+pub(crate) mod func;
 pub mod gcd;
 pub mod limits;
-pub mod merge;
+pub(crate) mod merge;
 pub mod mono;
 pub mod pack;
-pub mod poly;
-pub mod power;
+pub(crate) mod poly;
+pub(crate) mod power;
 pub mod print;
-pub mod qops;
-pub mod ranges;
-pub mod rat;
-pub mod reduce;
-pub mod series;
-pub mod sign;
+pub(crate) mod qops;
+pub(crate) mod ranges;
+pub(crate) mod rat;
+pub(crate) mod reduce;
+pub(crate) mod series;
+pub(crate) mod sign;
 pub mod subst;
-pub mod trig;
+pub(crate) mod trig;
 
 pub use atom::{Atom, AtomId};
 pub use poly::{Poly, Q};
@@ -31,7 +31,7 @@ use std::fmt;
 
 /// A difference `d` (zero when a step holds) looked at again where its normal form is
 /// not canonical: zero when sines and cosines of related angles, large powers kept
-/// factored ([`power::settle`]) or products of `abs` and roots ([`merge::merged`]) show
+/// factored (`power::settle`) or products of `abs` and roots (`merge::merged`) show
 /// it zero; otherwise `d`, with kept factors written out where that is affordable.
 pub fn settle(d: &Rat, s: &Assumptions) -> Rat {
     if d.is_zero() {

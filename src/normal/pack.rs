@@ -65,7 +65,7 @@ impl Packing {
     pub fn unpack(&self, mut v: u128) -> Mono {
         // At most 128 fields (each at least one bit wide): collect on the stack, then
         // allocate once, at the right size.
-        let mut buf = [(0 as AtomId, 0u32); 128];
+        let mut buf = [(AtomId::default(), 0u32); 128];
         let mut n = 0;
         for &(a, _, width) in &self.fields {
             let mask = (1u128 << width) - 1;
@@ -102,11 +102,11 @@ impl Packing {
 
 /// The largest exponent of every atom of `p`, ascending by atom id.
 pub(crate) fn degrees(p: &Poly) -> Vec<(AtomId, u64)> {
-    let (mut lo, mut hi) = (AtomId::MAX, 0);
+    let (mut lo, mut hi) = (u32::MAX, 0);
     for (m, _) in p.terms() {
         if let (Some(first), Some(last)) = (m.pairs().first(), m.pairs().last()) {
-            lo = lo.min(first.0);
-            hi = hi.max(last.0);
+            lo = lo.min(first.0.index());
+            hi = hi.max(last.0.index());
         }
     }
     if lo > hi {
@@ -117,7 +117,7 @@ pub(crate) fn degrees(p: &Poly) -> Vec<(AtomId, u64)> {
         let mut table = vec![0u32; (hi - lo) as usize + 1];
         for (m, _) in p.terms() {
             for &(a, e) in m.pairs() {
-                if let Some(t) = table.get_mut((a - lo) as usize) {
+                if let Some(t) = table.get_mut((a.index() - lo) as usize) {
                     *t = (*t).max(e);
                 }
             }
@@ -125,7 +125,7 @@ pub(crate) fn degrees(p: &Poly) -> Vec<(AtomId, u64)> {
         return (lo..=hi)
             .zip(table)
             .filter(|t| t.1 > 0)
-            .map(|(a, e)| (a, u64::from(e)))
+            .map(|(a, e)| (AtomId::from_index(a), u64::from(e)))
             .collect();
     }
     let mut out: Vec<(AtomId, u64)> = Vec::new();
@@ -183,8 +183,17 @@ mod tests {
     use num_traits::One;
     use proptest::prelude::*;
 
-    fn mono(pairs: &[(AtomId, u32)]) -> Mono {
-        Mono::from_pairs(pairs.to_vec()).unwrap_or_else(Mono::one)
+    fn mono(pairs: &[(u32, u32)]) -> Mono {
+        let pairs = pairs.iter().map(|&(a, e)| (AtomId::from_index(a), e));
+        Mono::from_pairs(pairs.collect()).unwrap_or_else(Mono::one)
+    }
+
+    /// Atoms numbered as written, with their degrees.
+    fn ids(pairs: &[(u32, u64)]) -> Vec<(AtomId, u64)> {
+        pairs
+            .iter()
+            .map(|&(a, e)| (AtomId::from_index(a), e))
+            .collect()
     }
 
     fn any_mono() -> impl Strategy<Value = Mono> {
@@ -193,14 +202,14 @@ mod tests {
 
     #[test]
     fn too_wide_is_refused() {
-        let atoms: Vec<(AtomId, u64)> = (0..70).map(|a| (a, 3)).collect();
+        let atoms: Vec<(AtomId, u64)> = (0..70).map(|a| (AtomId::from_index(a), 3)).collect();
         assert!(Packing::new(&atoms).is_none());
         assert!(Packing::new(&atoms[..64]).is_some());
     }
 
     #[test]
     fn exponents_that_do_not_fit_are_refused() {
-        let p = Packing::new(&[(1, 3), (4, 1)]).unwrap_or_else(|| unreachable!());
+        let p = Packing::new(&ids(&[(1, 3), (4, 1)])).unwrap_or_else(|| unreachable!());
         assert!(p.pack(&mono(&[(1, 3), (4, 1)])).is_some());
         assert!(p.pack(&mono(&[(1, 4)])).is_none());
         assert!(p.pack(&mono(&[(2, 1)])).is_none());
@@ -216,7 +225,7 @@ mod tests {
                 (mono(&[(3, 5)]), q.clone()),
                 (mono(&[(far, 4)]), q.clone()),
             ]);
-            assert_eq!(degrees(&p), vec![(3, 5), (far, 4)]);
+            assert_eq!(degrees(&p), ids(&[(3, 5), (far, 4)]));
         }
         assert!(degrees(&Poly::one()).is_empty());
     }

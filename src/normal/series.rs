@@ -7,7 +7,7 @@ use super::atom::{self, Atom, AtomId};
 use super::poly::{Poly, Q};
 use super::rat::Rat;
 use super::sign::{Assumptions, Sign};
-use super::subst::{atom_depends_on, depends_on};
+use super::subst::atom_depends_on;
 use super::{func, trig, NormError};
 use num_bigint::BigInt;
 use num_traits::{One, Zero};
@@ -285,9 +285,4 @@ impl Ctx<'_> {
         let s = self.compose(&c, &z)?;
         self.scale(&s, &func::root(&p0, m, self.signs)?)
     }
-}
-
-/// Whether `r` mentions `eps`.
-pub fn mentions(r: &Rat, eps: AtomId) -> bool {
-    depends_on(r, eps)
 }

@@ -42,7 +42,7 @@ pub fn command_in(path: &str, idx: &LineIndex<'_>, d: &Diagnostic) -> String {
         props.push(format!("endColumn={end_col}"));
     }
     props.push(format!("title={}", escape_property(d.code.as_str())));
-    let mut message = d.message.clone();
+    let mut message = d.message.to_string();
     // The words under the caret are the hint ("the left side is 2 × the right side",
     // "a sign error?"): an annotation has no caret, so they follow the headline.
     if let Some((_, label)) = &d.primary {
@@ -53,7 +53,7 @@ pub fn command_in(path: &str, idx: &LineIndex<'_>, d: &Diagnostic) -> String {
     }
     for n in &d.notes {
         message.push('\n');
-        message.push_str(n);
+        message.push_str(&n.to_string());
     }
     format!("::{kind} {}::{}\n", props.join(","), escape_data(&message))
 }

@@ -88,8 +88,8 @@ fn link(idx: &LineIndex<'_>, l: &LinkReport) -> Value {
 fn justification(how: &Justification) -> Value {
     match how {
         Justification::Identity => json!({ "kind": "identity" }),
-        Justification::Facts(fs) => json!({ "kind": "facts", "facts": fs }),
-        Justification::Signs(fs) => json!({ "kind": "signs", "facts": fs }),
+        Justification::Facts(fs) => json!({ "kind": "facts", "facts": keys(fs) }),
+        Justification::Signs(fs) => json!({ "kind": "signs", "facts": keys(fs) }),
         Justification::Approx => json!({ "kind": "approx" }),
         Justification::Small { order, of } => {
             json!({ "kind": "small", "order": order, "small": of })
@@ -101,9 +101,19 @@ fn diagnostic(idx: &LineIndex<'_>, d: &Diagnostic) -> Value {
     let mut obj = serde_json::Map::new();
     obj.insert("severity".into(), json!(d.severity.as_str()));
     obj.insert("code".into(), json!(d.code.as_str()));
-    obj.insert("message".into(), json!(d.message));
+    obj.insert("message".into(), json!(d.message.as_str()));
     position(idx, d.primary.as_ref().map(|(s, _)| *s), &mut obj);
     obj.insert("label".into(), json!(d.primary.as_ref().map(|(_, l)| l)));
-    obj.insert("notes".into(), json!(d.notes));
+    obj.insert("notes".into(), json!(notes(d)));
     Value::Object(obj)
+}
+
+/// Facts by the names JSON gives them (`Fx`, `line 12`).
+fn keys(fs: &[crate::diag::FactRef]) -> Vec<String> {
+    fs.iter().map(crate::diag::FactRef::key).collect()
+}
+
+/// A diagnostic's notes, in words.
+pub(crate) fn notes(d: &Diagnostic) -> Vec<String> {
+    d.notes.iter().map(ToString::to_string).collect()
 }

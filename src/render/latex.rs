@@ -7,7 +7,7 @@
 //! every formula comes from [`super::expr`], so any input gives a document that
 //! compiles.
 
-use super::solution::{build_with, Block, Inline, Just, Problem, Row};
+use super::solution::{build_with, Block, Inline, Problem};
 use super::steps::Work;
 use super::text::{latex_lines, latex_text};
 use super::Detail;
@@ -157,7 +157,7 @@ fn block_latex(block: &Block, in_book: bool, out: &mut String) {
         Block::Claim { rows, tag } => {
             out.push_str("\\begin{align*}\n");
             for (k, row) in rows.iter().enumerate() {
-                row_latex(row, out);
+                super::solution::row_math(text, row, out);
                 if k == 0 {
                     if let Some(t) = tag {
                         out.push_str(&format!(" \\tag{{{}}}", text(t)));
@@ -207,31 +207,8 @@ fn working_latex(work: &[Work], out: &mut String) {
     out.push_str("\\end{quote}\n");
 }
 
-/// One line of an `align*`: `lhs &= rhs \quad\text{(by …)}`.
-fn row_latex(row: &Row, out: &mut String) {
-    if let Some(lhs) = &row.lhs {
-        out.push_str(lhs);
-        out.push(' ');
-    }
-    out.push_str(&format!("&{} {}", row.rel, row.rhs));
-    match &row.by {
-        Some(Just::Text(t)) => out.push_str(&format!(" \\quad\\text{{(by {})}}", text(t))),
-        Some(Just::Labels(ls)) => {
-            let ls: Vec<String> = ls.iter().map(|l| format!("({})", text(l))).collect();
-            out.push_str(&format!(" \\quad\\text{{by {}}}", ls.join(", ")));
-        }
-        None => {}
-    }
-    if let Some(w) = &row.where_ {
-        out.push_str(&format!(" \\qquad {w}"));
-    }
-    if let Some(f) = row.flag {
-        out.push_str(&format!(" \\quad\\textbf{{[{f}]}}"));
-    }
-}
-
 fn problem_latex(p: &Problem, out: &mut String) {
-    let mut head = capitalise(p.kind);
+    let mut head = capitalise(p.kind.words());
     if let Some(line) = p.line {
         head.push_str(&format!(" (line {line})"));
     }

@@ -72,7 +72,7 @@ pub fn json(r: &LintReport) -> String {
                 .iter()
                 .map(|d| {
                     let at = d.primary.as_ref().map(|(s, _)| idx.line_col(s.start));
-                    json!({"code": d.code.as_str(), "message": d.message, "notes": d.notes,
+                    json!({"code": d.code.as_str(), "message": d.message.as_str(), "notes": super::json::notes(d),
                            "line": at.map(|a| a.0), "column": at.map(|a| a.1)})
                 })
                 .collect();

@@ -276,7 +276,7 @@ pub fn json(rows: &[Row]) -> String {
                 "file": r.file,
                 "steps_verified": r.steps.0,
                 "steps_total": r.steps.1,
-                "first_failure": r.first_failure.as_ref().map(|f| json!({"line": f.line, "kind": f.kind, "message": f.diagnostic.message})),
+                "first_failure": r.first_failure.as_ref().map(|f| json!({"line": f.line, "kind": f.kind, "message": f.diagnostic.message.to_string()})),
                 "results_correct": right,
                 "results_total": all,
                 "results": results,

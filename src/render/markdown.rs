@@ -3,7 +3,7 @@
 //! as block quotes. The math is the same LaTeX as in [`super::latex`]; text inside
 //! `\text{…}` and `\tag{…}` is made safe for MathJax and KaTeX.
 
-use super::solution::{build_with, Block, Inline, Just, Problem, Row};
+use super::solution::{build_with, Block, Inline, Problem};
 use super::steps::Work;
 use super::text::{block_safe, markdown_inline, markdown_message, markdown_text, mathjax_text};
 use super::Detail;
@@ -209,7 +209,7 @@ pub(crate) fn display_latex(block: &Block, tags: bool) -> Option<String> {
         Block::Claim { rows, tag } => {
             out.push_str("\\begin{aligned}\n");
             for (k, row) in rows.iter().enumerate() {
-                row_markdown(row, &mut out);
+                super::solution::row_math(mathjax_text, row, &mut out);
                 if k + 1 < rows.len() {
                     out.push_str(" \\\\");
                 }
@@ -243,34 +243,9 @@ fn code(t: &str) -> String {
     format!("{fence}{pad}{t}{pad}{fence}")
 }
 
-fn row_markdown(row: &Row, out: &mut String) {
-    if let Some(lhs) = &row.lhs {
-        out.push_str(lhs);
-        out.push(' ');
-    }
-    out.push_str(&format!("&{} {}", row.rel, row.rhs));
-    match &row.by {
-        Some(Just::Text(t)) => out.push_str(&format!(" \\quad\\text{{(by {})}}", mathjax_text(t))),
-        Some(Just::Labels(ls)) => {
-            let ls: Vec<String> = ls
-                .iter()
-                .map(|l| format!("({})", mathjax_text(l)))
-                .collect();
-            out.push_str(&format!(" \\quad\\text{{by {}}}", ls.join(", ")));
-        }
-        None => {}
-    }
-    if let Some(w) = &row.where_ {
-        out.push_str(&format!(" \\qquad {w}"));
-    }
-    if let Some(f) = row.flag {
-        out.push_str(&format!(" \\quad\\textbf{{[{f}]}}"));
-    }
-}
-
 /// `> **not verified** (line N): message`, notes on further quoted lines.
 fn problem_markdown(p: &Problem, out: &mut String) {
-    out.push_str(&format!("> **{}**", p.kind));
+    out.push_str(&format!("> **{}**", p.kind.words()));
     if let Some(line) = p.line {
         out.push_str(&format!(" (line {line})"));
     }

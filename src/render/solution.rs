@@ -8,9 +8,10 @@ use super::expr::{chain_latex_in, expr_latex_in, rel_latex, symbol, Ctx};
 use super::steps::{Steps, Work};
 use super::Detail;
 use crate::check::report::{ClaimReport, FileReport, Status};
-use crate::diag::{line_col, Diagnostic, Severity};
+use crate::diag::{line_col, Diagnostic, Note, Severity};
 use crate::syntax::ast::{
-    Assign, BodyDef, By, Chain, File, Item, Label, Name, ProsePart, SignDecl, Span, Stmt, StmtKind,
+    Assign, BodyDef, By, Chain, ExprKind, File, Item, Label, Name, ProsePart, SignDecl, Span, Stmt,
+    StmtKind,
 };
 
 /// A piece of a paragraph.
@@ -29,8 +30,8 @@ pub(crate) enum Inline {
 /// The justification of a link.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) enum Just {
-    /// `by some words` (raw text).
-    Text(String),
+    /// `by some words`: words, and the maths written between `$` typeset.
+    Text(Vec<Inline>),
     /// `by [Fx], [MG]` (raw label names).
     Labels(Vec<String>),
 }
@@ -48,21 +49,82 @@ pub(crate) struct Row {
     pub by: Option<Just>,
     /// `\text{where } …` on the last line (LaTeX).
     pub where_: Option<String>,
-    /// A marker for a link that is not verified (`not verified`, `not checked`).
-    pub flag: Option<&'static str>,
+    /// The mark of a link that is not verified.
+    pub flag: Option<Mark>,
+}
+
+/// One line of an `align*`, in LaTeX or MathJax (`escape` sets words inside `\text`):
+/// `lhs &= rhs \quad\text{(by …)}`, then its `where` and the mark of a link that did
+/// not verify.
+pub(crate) fn row_math(escape: fn(&str) -> String, row: &Row, out: &mut String) {
+    if let Some(lhs) = &row.lhs {
+        out.push_str(lhs);
+        out.push(' ');
+    }
+    out.push_str(&format!("&{} {}", row.rel, row.rhs));
+    match &row.by {
+        Some(Just::Text(parts)) => {
+            // Maths leaves the `\text` and comes back: MathJax sets no `$` inside it.
+            let words: String = parts
+                .iter()
+                .map(|p| match p {
+                    Inline::Math(m) => format!("}}{m}\\text{{"),
+                    Inline::Text(t) | Inline::Code(t) | Inline::Strong(t) => escape(t),
+                })
+                .collect();
+            out.push_str(&format!(" \\quad\\text{{(by {words})}}"));
+        }
+        Some(Just::Labels(ls)) => {
+            let ls: Vec<String> = ls.iter().map(|l| format!("({})", escape(l))).collect();
+            out.push_str(&format!(" \\quad\\text{{by {}}}", ls.join(", ")));
+        }
+        None => {}
+    }
+    if let Some(w) = &row.where_ {
+        out.push_str(&format!(" \\qquad {w}"));
+    }
+    if let Some(f) = row.flag {
+        out.push_str(&format!(" \\quad\\textbf{{[{}]}}", f.words()));
+    }
+}
+
+/// What a problem shown in a document is: the mark of the link of a claim it is about,
+/// or a diagnostic outside a claim by its severity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum ProblemKind {
+    /// About a link of a claim.
+    Link(Mark),
+    /// An error outside a claim.
+    Error,
+    /// A warning.
+    Warning,
+    /// A note.
+    Note,
+}
+
+impl ProblemKind {
+    /// `does not hold`, `error`, `warning`, ….
+    pub(crate) fn words(self) -> &'static str {
+        match self {
+            ProblemKind::Link(m) => m.words(),
+            ProblemKind::Error => "error",
+            ProblemKind::Warning => "warning",
+            ProblemKind::Note => "note",
+        }
+    }
 }
 
 /// A diagnostic shown in the document.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Problem {
-    /// `not verified`, `error`, `warning` or `note`.
-    pub kind: &'static str,
+    /// What it is.
+    pub kind: ProblemKind,
     /// The 1-based line it points at.
     pub line: Option<usize>,
     /// The message (raw text).
     pub message: String,
-    /// Its notes (raw text).
-    pub notes: Vec<String>,
+    /// Its notes.
+    pub notes: Vec<Note>,
 }
 
 /// A block of the document.
@@ -157,52 +219,72 @@ pub(crate) fn rich(t: &str) -> Vec<Inline> {
 }
 
 /// The worked solution of a report, as written.
-/// A note of a failure, typeset where it states expressions (the notes print normal
-/// forms in rigor's own syntax): `left side:  g m/2`, `after using the facts, left −
-/// right = …`, and the values of a counterexample. Anything that does not read stays
-/// words.
-pub(crate) fn note_inlines(note: &str) -> Vec<Inline> {
+/// A note of a failure, typeset where it states expressions (a side, the difference
+/// left after the facts, the values of a counterexample: normal forms in rigor's own
+/// syntax). An expression that does not read stays words.
+pub(crate) fn note_inlines(note: &Note) -> Vec<Inline> {
     let read = |t: &str| {
         crate::syntax::parse_expr(t.trim(), &crate::syntax::ParseOptions::default())
             .ok()
             .map(|e| super::expr::expr_latex(&e))
     };
-    const LEADS: [&str; 4] = [
-        "left side:",
-        "right side:",
-        "after using the facts, left − right =",
-        "after eliminating what the facts give, left − right =",
-    ];
-    if let Some(lead) = LEADS.iter().find(|l| note.starts_with(**l)) {
-        if let Some(m) = read(&note[lead.len()..]) {
-            // Set as a display would set it, so fractions keep their size.
-            return vec![
-                Inline::Text(format!("{lead} ")),
-                Inline::Math(format!("\\displaystyle {m}")),
-            ];
-        }
-    }
-    if let Some(rest) = note.strip_prefix("counterexample: at ") {
-        let (values, tail) = rest.split_once(" the ").unwrap_or((rest, ""));
-        let typeset: Option<Vec<String>> = values
-            .split(", ")
-            .map(|v| {
-                let (name, value) = v.split_once(" = ")?;
-                Some(format!("{} = {}", read(name)?, read(value)?))
-            })
-            .collect();
-        if let Some(t) = typeset {
-            let mut out = vec![
-                Inline::Text("counterexample: at ".into()),
-                Inline::Math(t.join(",\\ ")),
-            ];
-            if !tail.is_empty() {
-                out.push(Inline::Text(format!(" the {tail}")));
+    let words = || vec![Inline::Text(note.to_string())];
+    // Set as a display would set it, so fractions keep their size.
+    let lead_and = |lead: &str, value: &str| match read(value) {
+        Some(m) => vec![
+            Inline::Text(format!("{lead} ")),
+            Inline::Math(format!("\\displaystyle {m}")),
+        ],
+        None => words(),
+    };
+    match note {
+        Note::Side { left: true, value } => lead_and("left side:", value),
+        Note::Side { left: false, value } => lead_and("right side:", value),
+        Note::Remainder { eliminated, value } => lead_and(
+            if *eliminated {
+                "after eliminating what the facts give, left − right ="
+            } else {
+                "after using the facts, left − right ="
+            },
+            value,
+        ),
+        Note::Reduced { using, left, right } => match (read(left), read(right)) {
+            (Some(l), Some(r)) => {
+                let lead = if using.is_empty() {
+                    "with the facts: left ".to_string()
+                } else {
+                    format!(
+                        "with the facts (after using {}): left ",
+                        crate::diag::cite(using)
+                    )
+                };
+                vec![
+                    Inline::Text(lead),
+                    Inline::Math(l),
+                    Inline::Text(", right ".into()),
+                    Inline::Math(r),
+                ]
             }
-            return out;
+            _ => words(),
+        },
+        Note::Counterexample { at, left, right } if !at.is_empty() => {
+            let typeset: Option<Vec<String>> = at
+                .iter()
+                .map(|(name, value)| Some(format!("{} = {}", read(name)?, read(value)?)))
+                .collect();
+            match typeset {
+                Some(t) => vec![
+                    Inline::Text("counterexample: at ".into()),
+                    Inline::Math(t.join(",\\ ")),
+                    Inline::Text(format!(
+                        " the left side is {left} and the right side {right}"
+                    )),
+                ],
+                None => words(),
+            }
         }
+        _ => words(),
     }
-    vec![Inline::Text(note.to_string())]
 }
 
 pub(crate) fn build(report: &FileReport) -> Solution {
@@ -255,12 +337,91 @@ struct Builder<'a> {
     /// Equation numbers of the labelled givens, constraints and claims, in document
     /// order: labels never appear in the output, their numbers do.
     numbers: std::collections::HashMap<String, usize>,
-    /// The unknowns, for the "Find" line.
+    /// What the derivation finds, for the "Find" line (said once, after the first
+    /// declarations).
     find: Vec<String>,
     /// Where the file sits in a book, if it is one section of several.
     place: Option<&'a Place<'a>>,
     /// The work to fill in, with [`Detail::Steps`].
     steps: Option<Steps<'a>>,
+}
+
+/// Words with maths between `$` (rigor's syntax, as in prose): the maths typeset where it
+/// reads, the rest kept as words (an unclosed `$` included).
+pub(crate) fn words_and_math(t: &str, ctx: &Ctx) -> Vec<Inline> {
+    let opts = crate::syntax::ParseOptions::default();
+    let mut out = Vec::new();
+    let mut pieces = t.split('$');
+    let mut words = pieces.next().unwrap_or("").to_string();
+    let mut rest: Vec<&str> = pieces.collect();
+    // An odd `$` at the end opens nothing.
+    let unclosed = (rest.len() % 2 == 1).then(|| rest.pop()).flatten();
+    for pair in rest.chunks(2) {
+        let (math, after) = (pair[0], pair.get(1).copied().unwrap_or(""));
+        let typeset = crate::syntax::parse_chain(math, &opts)
+            .ok()
+            .filter(|c| !c.links.is_empty())
+            .map(|c| chain_latex_in(&c, ctx))
+            .or_else(|| {
+                crate::syntax::parse_expr(math, &opts)
+                    .ok()
+                    .map(|e| expr_latex_in(&e, ctx))
+            });
+        match typeset {
+            Some(m) => {
+                if !words.is_empty() {
+                    out.push(Inline::Text(std::mem::take(&mut words)));
+                }
+                out.push(Inline::Math(m));
+            }
+            None => words.push_str(&format!("${math}$")),
+        }
+        words.push_str(after);
+    }
+    if let Some(u) = unclosed {
+        words.push('$');
+        words.push_str(u);
+    }
+    if !words.is_empty() {
+        out.push(Inline::Text(words));
+    }
+    out
+}
+
+/// What a derivation finds: the left sides of the claims `result [..]` names, or, with no
+/// `result`, those of its claims whose left side is one quantity (`I_G = …`), each once.
+fn sought(ast: &File, ctx: &Ctx) -> Vec<String> {
+    let stmts = || {
+        ast.items.iter().filter_map(|i| match i {
+            Item::Stmt(st) => Some(&st.kind),
+            _ => None,
+        })
+    };
+    let named: Vec<&str> = stmts()
+        .filter_map(|k| match k {
+            StmtKind::Result { labels } => Some(labels.iter().map(|l| l.name.as_str())),
+            _ => None,
+        })
+        .flatten()
+        .collect();
+    let mut out: Vec<String> = Vec::new();
+    for k in stmts() {
+        let StmtKind::Claim { label, chain, .. } = k else {
+            continue;
+        };
+        let wanted = if named.is_empty() {
+            matches!(chain.first.kind, ExprKind::Sym(_))
+        } else {
+            label
+                .as_ref()
+                .is_some_and(|l| named.contains(&l.name.as_str()))
+        };
+        let first = expr_latex_in(&chain.first, ctx);
+        if wanted && !out.contains(&first) {
+            out.push(first);
+        }
+    }
+    out
 }
 
 /// Equation numbers of a file's labelled givens, constraints and claims, in document
@@ -333,15 +494,16 @@ fn joined(base: &str, rel: &str) -> Option<String> {
 
 impl<'a> Builder<'a> {
     fn new(report: &'a FileReport, ast: &'a File, detail: Detail) -> Builder<'a> {
+        let ctx = Ctx::from_file(ast);
         Builder {
             steps: (detail == Detail::Steps).then(|| Steps::new(&report.env, ast)),
             report,
             ast,
-            ctx: Ctx::from_file(ast),
+            find: sought(ast, &ctx),
+            ctx,
             shown: vec![false; report.diagnostics.len()],
             blocks: Vec::new(),
             numbers: numbers_of(ast),
-            find: Vec::new(),
             place: None,
         }
     }
@@ -418,9 +580,6 @@ impl<'a> Builder<'a> {
                     }
                 }
                 Item::Stmt(stmt) if is_declaration(&stmt.kind) => {
-                    if let StmtKind::Unknowns { names } = &stmt.kind {
-                        self.find.extend(names.iter().map(|n| symbol(&n.name)));
-                    }
                     self.declaration(&stmt.kind, &mut decls);
                     decl_problems.extend(self.attach(stmt.span, false));
                 }
@@ -519,7 +678,7 @@ impl<'a> Builder<'a> {
     /// chain was shown false, else "not verified" when one is undecided, else "not
     /// checked" (including a claim the report does not hold); `None` when every link
     /// verified.
-    fn result_mark(&self, stmt: &Stmt, chain: &Chain) -> Option<&'static str> {
+    fn result_mark(&self, stmt: &Stmt, chain: &Chain) -> Option<Mark> {
         let claim = self.claim_report(stmt);
         let statuses: Vec<Option<&Status>> = chain
             .links
@@ -537,11 +696,11 @@ impl<'a> Builder<'a> {
         }
         let has = |f: fn(&Status) -> bool| statuses.iter().flatten().any(|s| f(s));
         Some(if has(|s| *s == Status::Failed) {
-            DOES_NOT_HOLD
+            Mark::DoesNotHold
         } else if has(|s| *s == Status::Undecided) {
-            NOT_VERIFIED
+            Mark::NotVerified
         } else {
-            NOT_CHECKED
+            Mark::NotChecked
         })
     }
 
@@ -586,6 +745,7 @@ impl<'a> Builder<'a> {
     /// Ends a run of declarations: the "Given quantities" and "Find" sentences and their
     /// problems.
     fn finish_decls(&mut self, decls: &mut Vec<Inline>, problems: &mut Vec<Problem>) {
+        let declared = !decls.is_empty() || !problems.is_empty();
         if !decls.is_empty() {
             let mut p = vec![
                 Inline::Strong("Given quantities:".into()),
@@ -595,7 +755,7 @@ impl<'a> Builder<'a> {
             p.push(Inline::Text(".".into()));
             self.blocks.push(Block::Paragraph(p));
         }
-        if !self.find.is_empty() {
+        if declared && !self.find.is_empty() {
             let find = std::mem::take(&mut self.find);
             self.blocks.push(Block::Paragraph(vec![
                 Inline::Strong("Find:".into()),
@@ -803,9 +963,9 @@ impl<'a> Builder<'a> {
                     .and_then(|c| c.links.get(k))
                     .map(|l| &l.status)
                     .or_else(|| self.report.link_status(link.span));
-                let flag = status.map_or(Some(NOT_CHECKED), mark);
+                let flag = status.map_or(Some(Mark::NotChecked), mark);
                 let by = link.by.as_ref().map(|(by, _)| match by {
-                    By::Text(t) => Just::Text(t.clone()),
+                    By::Text(t) => Just::Text(words_and_math(t, &self.ctx)),
                     By::Labels(ls) => {
                         Just::Labels(ls.iter().map(|l| self.number(&l.name)).collect())
                     }
@@ -902,20 +1062,22 @@ impl<'a> Builder<'a> {
 
     fn problem(&self, d: &Diagnostic, in_claim: bool) -> Problem {
         let kind = match d.severity {
-            // In a claim, the words of the verdict of the link it is about.
-            Severity::Error if in_claim => {
-                self.status_at(d).and_then(mark).unwrap_or("not verified")
-            }
-            Severity::Error => "error",
-            Severity::Warning => "warning",
-            Severity::Note => "note",
+            // In a claim, the mark of the link it is about.
+            Severity::Error if in_claim => ProblemKind::Link(
+                self.status_at(d)
+                    .and_then(mark)
+                    .unwrap_or(Mark::NotVerified),
+            ),
+            Severity::Error => ProblemKind::Error,
+            Severity::Warning => ProblemKind::Warning,
+            Severity::Note => ProblemKind::Note,
         };
         // The words under the caret are the hint ("the left side is 2 × the right side
         // (a constant factor)"): a document has no caret, so they lead the notes.
         let mut notes = d.notes.clone();
         if let Some((_, hint)) = d.primary.as_ref().filter(|(_, h)| !h.is_empty()) {
             if in_claim && d.severity == Severity::Error {
-                notes.insert(0, hint.clone());
+                notes.insert(0, Note::from(hint.as_str()));
             }
         }
         Problem {
@@ -924,7 +1086,7 @@ impl<'a> Builder<'a> {
                 .primary
                 .as_ref()
                 .map(|(s, _)| line_col(&self.report.source, s.start).0),
-            message: d.message.clone(),
+            message: d.message.to_string(),
             notes,
         }
     }
@@ -934,21 +1096,36 @@ impl<'a> Builder<'a> {
 /// false "does not hold" (E0301), one neither shown true nor false is "not verified"
 /// (E0302), and one that could not be read or cites a failure is "not checked".
 /// `None` for a verified link.
-pub(crate) fn mark(s: &Status) -> Option<&'static str> {
+pub(crate) fn mark(s: &Status) -> Option<Mark> {
     match s {
         Status::Verified { .. } => None,
-        Status::Failed => Some(DOES_NOT_HOLD),
-        Status::Undecided => Some(NOT_VERIFIED),
-        Status::Error | Status::NotChecked => Some(NOT_CHECKED),
+        Status::Failed => Some(Mark::DoesNotHold),
+        Status::Undecided => Some(Mark::NotVerified),
+        Status::Error | Status::NotChecked => Some(Mark::NotChecked),
     }
 }
 
-/// The mark of a link shown false.
-pub(crate) const DOES_NOT_HOLD: &str = "does not hold";
-/// The mark of a link neither verified nor refuted.
-pub(crate) const NOT_VERIFIED: &str = "not verified";
-/// The mark of a link that was not checked.
-pub(crate) const NOT_CHECKED: &str = "not checked";
+/// The mark of a link that did not verify.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Mark {
+    /// Shown false.
+    DoesNotHold,
+    /// Neither verified nor refuted.
+    NotVerified,
+    /// Not checked.
+    NotChecked,
+}
+
+impl Mark {
+    /// The words every view uses for it.
+    pub(crate) fn words(self) -> &'static str {
+        match self {
+            Mark::DoesNotHold => "does not hold",
+            Mark::NotVerified => "not verified",
+            Mark::NotChecked => "not checked",
+        }
+    }
+}
 
 fn is_declaration(kind: &StmtKind) -> bool {
     matches!(

@@ -16,6 +16,7 @@ use super::expr::{expr_latex_in, rel_latex, symbol, Ctx};
 use super::solution::Inline;
 use crate::calculus::{antiderivative, Body};
 use crate::check::report::Working;
+use crate::diag::{Cited, FactRef};
 use crate::lower::{lower, Env, Lowerer};
 use crate::normal::atom::{self, Atom, AtomId};
 use crate::normal::mono::Mono;
@@ -631,14 +632,12 @@ fn moments(f: &Rat, body: &str, coords: &[(String, AtomId)]) -> Option<Rat> {
 /// How the document cites a fact the checker names `[Fx]`, `[noslip]''` or `line 12`:
 /// `(3)`, `(5) differentiated twice`, `the equation on line 12`. `number` gives a
 /// label's equation number.
-fn cite(fact: &str, number: &dyn Fn(&str) -> String) -> String {
-    let base = fact.trim_end_matches('\'');
-    let primes = fact.len() - base.len();
-    let main = match base.strip_prefix('[').and_then(|b| b.strip_suffix(']')) {
-        Some(label) => format!("({})", number(label)),
-        None => format!("the equation on {base}"),
+fn cite(fact: &Cited, number: &dyn Fn(&str) -> String) -> String {
+    let main = match &fact.fact {
+        FactRef::Label(label) => format!("({})", number(label)),
+        FactRef::Line(n) => format!("the equation on line {n}"),
     };
-    match primes {
+    match fact.derivative {
         0 => main,
         1 => format!("{main} differentiated"),
         2 => format!("{main} differentiated twice"),

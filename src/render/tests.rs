@@ -6,7 +6,7 @@ use super::text::{latex_text, markdown_text, mathjax_text};
 use super::{github, human, json, latex, markdown, Detail};
 use crate::check::report::{ClaimReport, FileReport, Justification, LinkReport, Status};
 use crate::diag::Code;
-use crate::diag::{Diagnostic, Severity};
+use crate::diag::{Diagnostic, FactRef, Severity};
 use crate::syntax::ast::{Item, Span, StmtKind};
 use crate::syntax::{parse_chain, parse_expr, parse_file, ParseOptions};
 use num_bigint::BigInt;
@@ -209,6 +209,7 @@ fn github_commands() {
                 primary: None,
                 notes: vec![],
                 mistake: None,
+                reached: None,
             },
         ],
         ..Default::default()
@@ -288,7 +289,7 @@ fn summary_line() {
         SMALL,
         vec![
             Status::Verified {
-                how: Justification::Facts(vec!["Fx".into()]),
+                how: Justification::Facts(vec![FactRef::Label("Fx".into())]),
                 side_conditions: vec![],
             },
             Status::Failed,
@@ -323,7 +324,7 @@ fn human_verbose_lines() {
         SMALL,
         vec![
             Status::Verified {
-                how: Justification::Facts(vec!["Fx".into(), "line 3".into()]),
+                how: Justification::Facts(vec![FactRef::Label("Fx".into()), FactRef::Line(3)]),
                 side_conditions: vec![],
             },
             Status::Verified {
@@ -351,7 +352,7 @@ fn json_fields() {
         SMALL,
         vec![
             Status::Verified {
-                how: Justification::Facts(vec!["Fx".into()]),
+                how: Justification::Facts(vec![FactRef::Label("Fx".into())]),
                 side_conditions: vec!["m != 0".into()],
             },
             Status::Failed,
@@ -650,7 +651,7 @@ fn steps_of_hostile_files_stay_escaped() {
     let tex = latex::document_with(&r, Detail::Steps);
     assert_eq!(tex.matches("\\textit{Working.}").count(), 2, "{tex}");
     assert!(
-        tex.contains("(by \\{sure\\} \\& \\$x\\$ \\textbackslash{}"),
+        tex.contains("(by \\{sure\\} \\& }x\\text{ \\textbackslash{}"),
         "{tex}"
     );
     compile("hostile-steps", &tex);
@@ -660,24 +661,28 @@ fn steps_of_hostile_files_stay_escaped() {
 
 /// Compiles `tex` with pdflatex and asserts success, and that no line is overfull by
 /// more than 10 pt.
-fn compile(name: &str, tex: &str) {
-    let log = pdflatex(name, tex);
+fn compile(name: &str, tex: &str) -> String {
+    let (log, text) = pdflatex(name, tex);
     let worst = overfull(&log);
     assert!(
         worst <= 10.0,
         "{name}: a line is {worst} pt too wide:\n{log}\n--- document ---\n{tex}"
     );
+    text
 }
 
 /// Compiles `tex` with pdflatex in a fresh temporary folder, asserts success and
-/// returns the log. Without pdflatex the test fails, unless `RIGOR_SKIP_PDFLATEX=1`
-/// (then the log is empty).
-fn pdflatex(name: &str, tex: &str) -> String {
-    if Command::new("pdflatex").arg("--version").output().is_err() {
+/// returns the log and the PDF's text (by pdftotext). Without pdflatex or pdftotext the
+/// test fails, unless `RIGOR_SKIP_PDFLATEX=1` (then both are empty).
+fn pdflatex(name: &str, tex: &str) -> (String, String) {
+    let missing = ["pdflatex", "pdftotext"]
+        .into_iter()
+        .find(|t| Command::new(t).arg("-v").output().is_err());
+    if let Some(tool) = missing {
         if std::env::var("RIGOR_SKIP_PDFLATEX").is_ok_and(|v| v == "1") {
-            return String::new();
+            return (String::new(), String::new());
         }
-        panic!("pdflatex is not on PATH: install TeX Live or set RIGOR_SKIP_PDFLATEX=1");
+        panic!("{tool} is not on PATH: install TeX Live and poppler-utils, or set RIGOR_SKIP_PDFLATEX=1");
     }
     let dir = std::env::temp_dir().join(format!("rigor-render-{}-{name}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -694,12 +699,30 @@ fn pdflatex(name: &str, tex: &str) -> String {
         .unwrap();
     let ok = out.status.success() && dir.join("doc.pdf").exists();
     let log = String::from_utf8_lossy(&out.stdout).into_owned();
+    let text = Command::new("pdftotext")
+        .args(["-enc", "UTF-8", "doc.pdf", "-"])
+        .current_dir(&dir)
+        .output()
+        .map(|o| String::from_utf8_lossy(&o.stdout).into_owned())
+        .unwrap_or_default();
     let _ = std::fs::remove_dir_all(&dir);
     assert!(
         ok,
         "pdflatex failed on {name}:\n{log}\n--- document ---\n{tex}"
     );
-    log
+    (log, text)
+}
+
+/// Lines of a PDF's text that show rigor's own syntax rather than typeset maths: a
+/// caret, a function applied with parentheses, `int(`, `eval(`, or a mass element
+/// written `m/L dy`.
+fn source_syntax(text: &str) -> Vec<&str> {
+    let leaks = [
+        "^", "sqrt(", "sin(", "cos(", "int(", "eval(", "/L d", " pi ", "''",
+    ];
+    text.lines()
+        .filter(|l| leaks.iter().any(|k| l.contains(k)))
+        .collect()
 }
 
 /// The widest `Overfull \hbox (X pt too wide)` of a pdflatex log, in pt (0 if none).
@@ -780,10 +803,20 @@ fn a_folder_is_one_book_in_its_order_with_cross_references() {
         "{}",
         reports[0].path
     );
-    compile("handout-book", &latex::book(&reports, "Handout 5"));
+    let text = compile("handout-book", &latex::book(&reports, "Handout 5"));
+    let leaks = source_syntax(&text);
+    assert!(
+        leaks.is_empty(),
+        "source syntax in the book's PDF: {leaks:#?}"
+    );
     let steps = latex::book_with(&reports, "Handout 5", Detail::Steps);
     assert!(steps.contains("\\textit{Working.}"));
-    compile("handout-book-steps", &steps);
+    let text = compile("handout-book-steps", &steps);
+    let leaks = source_syntax(&text);
+    assert!(
+        leaks.is_empty(),
+        "source syntax in the book's PDF with --steps: {leaks:#?}"
+    );
 }
 
 #[test]
@@ -877,7 +910,11 @@ fn math_in_titles_and_headings_is_typeset() {
 #[test]
 fn failure_notes_typeset_their_expressions_and_keep_words_as_words() {
     use super::solution::{note_inlines, Inline};
-    let left = note_inlines("left side:  L^2 m/12");
+    use crate::diag::Note;
+    let left = note_inlines(&Note::Side {
+        left: true,
+        value: "L^2 m/12".into(),
+    });
     assert_eq!(
         left,
         vec![
@@ -885,18 +922,29 @@ fn failure_notes_typeset_their_expressions_and_keep_words_as_words() {
             Inline::Math("\\displaystyle \\frac{L^{2}\\,m}{12}".into())
         ]
     );
-    let cx = note_inlines("counterexample: at L = 2, m = 11/4 the left side is 11/12");
+    let cx = note_inlines(&Note::Counterexample {
+        at: vec![("L".into(), "2".into()), ("m".into(), "11/4".into())],
+        left: "11/12".into(),
+        right: "1".into(),
+    });
     assert!(
         matches!(&cx[1], Inline::Math(m) if m == "L = 2,\\ m = \\frac{11}{4}"),
         "{cx:?}"
     );
     // What does not read as an expression stays text (escaped where it is written).
-    for words in [
-        "left side: \\input{/etc/passwd}",
-        "the two sides have opposite signs (a sign error?)",
-    ] {
-        assert_eq!(note_inlines(words), vec![Inline::Text(words.into())]);
-    }
+    let hostile = Note::Side {
+        left: true,
+        value: "\\input{/etc/passwd}".into(),
+    };
+    assert_eq!(
+        note_inlines(&hostile),
+        vec![Inline::Text("left side:  \\input{/etc/passwd}".into())]
+    );
+    let words = "the two sides have opposite signs (a sign error?)";
+    assert_eq!(
+        note_inlines(&words.into()),
+        vec![Inline::Text(words.into())]
+    );
 }
 
 /// A file whose results verify, fail, and are undecided, with hostile `by` text.
@@ -1075,4 +1123,56 @@ fn user_text_never_reaches_markdown_as_html() {
     // is escaped, so the tag is text.
     let msg = super::text::markdown_message("```<img src=x onerror=alert(1)>`");
     assert_eq!(msg, "\\`\\``<img src=x onerror=alert(1)>`");
+}
+
+#[test]
+fn find_names_what_the_derivation_finds_and_by_words_typeset_their_maths() {
+    let src = "# Slope\nsymbols m g > 0\nsymbols beta\nunknowns F, N\ngiven [Fx] F = m g sin(beta)\ngiven [Fy] N = m g cos(beta)\nclaim [a] F/m = g sin(beta) by the balance along $x$ with $F = m g sin(beta)$, not $ alone\nresult [a]\n";
+    let report = crate::check_source(
+        "s.deriv",
+        src,
+        &crate::Options::default(),
+        &crate::MemoryResolver::new(),
+    );
+    let md = markdown::document(&report);
+    // The result's quantity, not the unknowns F and N.
+    assert!(md.contains("**Find:** $\\frac{F}{m}$."), "{md}");
+    let tex = latex::document(&report);
+    assert!(
+        tex.contains("\\text{(by the balance along }x\\text{ with }F = m\\,g\\,\\sin\\beta\\text{, not \\$ alone)}"),
+        "{tex}"
+    );
+    // With no `result`, the claims whose left side is one quantity.
+    let plain = src.replace("result [a]\n", "claim [b] F = m g sin(beta) by [Fx]\n");
+    let report = crate::check_source(
+        "s.deriv",
+        &plain,
+        &crate::Options::default(),
+        &crate::MemoryResolver::new(),
+    );
+    assert!(markdown::document(&report).contains("**Find:** $F$."));
+}
+
+#[test]
+fn the_sides_after_the_facts_are_typeset_in_a_failure_note() {
+    use super::solution::{note_inlines, Inline};
+    use crate::diag::Note;
+    let note = Note::Reduced {
+        using: vec![FactRef::Label("Fx".into())],
+        left: "g m sin(beta)".into(),
+        right: "2 g m sin(beta)".into(),
+    };
+    let inl = note_inlines(&note);
+    assert_eq!(
+        inl[0],
+        Inline::Text("with the facts (after using [Fx]): left ".into())
+    );
+    assert!(
+        matches!(&inl[1], Inline::Math(m) if m.contains("\\sin\\beta")),
+        "{inl:?}"
+    );
+    assert!(
+        matches!(&inl[3], Inline::Math(m) if m.starts_with('2')),
+        "{inl:?}"
+    );
 }

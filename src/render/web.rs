@@ -129,7 +129,7 @@ fn block(b: &Block) -> Value {
 }
 
 fn problem(p: &Problem) -> Value {
-    json!({ "kind": p.kind, "line": p.line, "message": p.message, "notes": p.notes })
+    json!({ "kind": p.kind.words(), "line": p.line, "message": p.message, "notes": p.notes.iter().map(ToString::to_string).collect::<Vec<_>>() })
 }
 
 #[cfg(test)]

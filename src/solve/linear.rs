@@ -2,7 +2,7 @@
 //! determinant per numerator, and gcd-reduced results: `x_i = num_i / det`, each in
 //! lowest terms.
 //!
-//! The checker does not use this solver (it eliminates fact by fact, `check/solve.rs`);
+//! The checker does not use this solver (it eliminates fact by fact, `check/elimination.rs`);
 //! it is the library's solver and the one the benchmarks time.
 
 use crate::normal::gcd::{div_exact, gcd};

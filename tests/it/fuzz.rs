@@ -11,6 +11,7 @@
 
 use proptest::prelude::*;
 use rigor::check::{check_source, Justification, MemoryResolver, Options, Status};
+use rigor::diag::FactRef;
 use rigor::guard::{self, Ball, GuardEnv};
 use rigor::lower::{lower, Env};
 use rigor::syntax::ast::{Item, Stmt as Stmt_, StmtKind};
@@ -633,26 +634,27 @@ fn close(a: &Ball, b: &Ball) -> bool {
 /// used as a fact that does not hold there, facts that disagree.
 fn satisfy(
     g: &GenFile,
-    used: &[String],
+    used: &[FactRef],
     env: &GuardEnv,
     mut pt: HashMap<String, f64>,
 ) -> Option<HashMap<String, f64>> {
     let mut checks: Vec<(String, String)> = Vec::new();
     let mut f_set = false;
-    for label in used {
-        let label = label.trim_end_matches('\'');
-        if let Some(line) = label.strip_prefix("line ") {
-            // An earlier verified claim: every element of its chain equal there.
-            let line: usize = line.parse().ok()?;
-            let (_, c) = g.claims.iter().find(|(l, _)| *l == line)?;
-            if c.where_.is_some() || c.rels.iter().any(|r| r.op != "=") {
-                return None;
+    for fact in used {
+        let label = match fact {
+            FactRef::Label(l) => l.as_str(),
+            FactRef::Line(line) => {
+                // An earlier verified claim: every element of its chain equal there.
+                let (_, c) = g.claims.iter().find(|(l, _)| l == line)?;
+                if c.where_.is_some() || c.rels.iter().any(|r| r.op != "=") {
+                    return None;
+                }
+                for e in &c.chain[1..] {
+                    checks.push((c.chain[0].clone(), e.clone()));
+                }
+                continue;
             }
-            for e in &c.chain[1..] {
-                checks.push((c.chain[0].clone(), e.clone()));
-            }
-            continue;
-        }
+        };
         match g.facts.get(label)? {
             Fact::Given(l, r) => {
                 let f = value(&format!("({r}) - ({l})"), env, &pt)?;
@@ -756,7 +758,7 @@ fn check_and_validate(g: &GenFile, pt: &[f64]) -> Result<(), TestCaseError> {
             let Status::Verified { how, .. } = &link.status else {
                 continue;
             };
-            let used: &[String] = match how {
+            let used: &[FactRef] = match how {
                 Justification::Facts(f) | Justification::Signs(f) => f,
                 _ => &[],
             };

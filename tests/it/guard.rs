@@ -37,7 +37,9 @@ fn a_forced_wrong_normal_form_is_caught_and_made_undecided() {
     let codes: Vec<&str> = r.diagnostics.iter().map(|d| d.code.as_str()).collect();
     assert_eq!(codes, ["E0903", "E0903"]);
     assert!(
-        r.diagnostics[0].notes[0].contains("the left side is ≈ "),
+        r.diagnostics[0].notes[0]
+            .to_string()
+            .contains("the left side is ≈ "),
         "{:?}",
         r.diagnostics[0]
     );

@@ -2,6 +2,7 @@
 //! a resolver the caller passes in.
 
 use rigor::check::{Justification, Status};
+use rigor::diag::FactRef;
 use rigor::{check_source, MemoryResolver, Options};
 
 const ROD: &str = "# A rod
@@ -28,7 +29,7 @@ fn an_in_memory_derivation_imports_another_through_the_resolver() {
     assert_eq!(
         r.claims[0].links[0].status,
         Status::Verified {
-            how: Justification::Facts(vec!["PA".into()]),
+            how: Justification::Facts(vec![FactRef::Label("PA".into())]),
             side_conditions: Vec::new()
         }
     );
@@ -43,7 +44,7 @@ fn an_in_memory_derivation_imports_another_through_the_resolver() {
     assert_eq!(
         r.claims[0].links[0].status,
         Status::Verified {
-            how: Justification::Facts(vec!["TT".into()]),
+            how: Justification::Facts(vec![FactRef::Label("TT".into())]),
             side_conditions: Vec::new()
         }
     );

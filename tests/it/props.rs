@@ -10,7 +10,7 @@ use rigor::normal::gcd::div_exact;
 use rigor::normal::mono::Mono;
 use rigor::normal::pack::Packing;
 use rigor::normal::print::plain;
-use rigor::normal::{Assumptions, Poly, Rat, Q};
+use rigor::normal::{Assumptions, AtomId, Poly, Rat, Q};
 
 /// A small rational, written as `n`, `(n/d)` or `(-n/d)`.
 fn rational() -> impl Strategy<Value = String> {
@@ -365,7 +365,10 @@ fn raw_poly(atoms: u32, exps: impl Strategy<Value = u32> + Clone) -> impl Strate
     prop::collection::vec(term, 1..5).prop_map(|ts| {
         Poly::from_terms(
             ts.into_iter()
-                .filter_map(|(m, c)| Some((Mono::from_pairs(m)?, Q::from_integer(c.into()))))
+                .filter_map(|(m, c)| {
+                    let m = m.into_iter().map(|(a, e)| (AtomId::from_index(a), e));
+                    Some((Mono::from_pairs(m.collect())?, Q::from_integer(c.into())))
+                })
                 .collect(),
         )
     })
@@ -411,7 +414,7 @@ fn the_exact_division_property_reaches_the_general_path() {
     let big = |e: u32| {
         Poly::from_terms(vec![
             (
-                Mono::from_pairs(vec![(0, e), (1, e), (2, e), (3, e), (4, e)]).unwrap(),
+                Mono::from_pairs((0..5).map(|a| (AtomId::from_index(a), e)).collect()).unwrap(),
                 Q::from_integer(1.into()),
             ),
             (Mono::one(), Q::from_integer(1.into())),
@@ -422,7 +425,12 @@ fn the_exact_division_property_reaches_the_general_path() {
     assert_eq!(div_exact(&a.mul(&b).unwrap(), &b), Ok(Some(a)));
     let wide = Poly::from_terms(
         (0..60)
-            .map(|i| (Mono::atom(i, 15), Q::from_integer(1.into())))
+            .map(|i| {
+                (
+                    Mono::atom(AtomId::from_index(i), 15),
+                    Q::from_integer(1.into()),
+                )
+            })
             .collect(),
     );
     assert!(Packing::for_quotient(&wide, &wide).is_none());

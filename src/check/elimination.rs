@@ -3,6 +3,7 @@
 //! roots of positive unknowns that appear only as `u^n`.
 
 use crate::clock::Deadline;
+use crate::diag::{Cited, Text};
 use crate::normal::atom::{self, AtomId};
 use crate::normal::subst::{atom_depends_on, subst_atom};
 use crate::normal::{func, Assumptions, NormError, Poly, Rat, Sign};
@@ -12,8 +13,8 @@ use crate::normal::{func, Assumptions, NormError, Poly, Rat, Sign};
 pub struct Fact {
     /// The left side minus the right side.
     pub value: Rat,
-    /// `[Fx]` or `line 12`.
-    pub name: String,
+    /// How it is cited (with the times it was differentiated).
+    pub name: Cited,
 }
 
 /// One solved unknown.
@@ -24,7 +25,7 @@ pub struct Step {
     /// Its value in terms of the remaining symbols.
     pub value: Rat,
     /// The fact it came from.
-    pub fact: String,
+    pub fact: Cited,
     /// The divisor of the solution, when not known nonzero.
     pub divisor: Option<Rat>,
 }
@@ -37,17 +38,17 @@ pub struct Elimination {
     /// The steps taken, in order.
     pub steps: Vec<Step>,
     /// A fact that reduced to a false statement (facts contradict), by name.
-    pub contradiction: Option<String>,
+    pub contradiction: Option<Cited>,
     /// Unknowns left in the target that no fact determined.
     pub stuck: Vec<AtomId>,
     /// Whether the time budget ran out.
     pub timed_out: bool,
     /// The fact the target is a constant multiple of, when that settled it.
-    pub multiple_of: Option<String>,
+    pub multiple_of: Option<Cited>,
     /// When the target is left nonzero: a fact it is the quotient of by a factor the
     /// signs do not show nonzero (the fact's name and that factor), so that the step
     /// would follow where the factor is not zero.
-    pub multiple_where: Option<(String, Rat)>,
+    pub multiple_where: Option<(Cited, Rat)>,
 }
 
 /// Eliminates the unknowns in `target` using `facts`; then, if the target is still not
@@ -84,12 +85,12 @@ pub fn eliminate(
     if first.target.is_zero() {
         return Ok(first);
     }
-    let used: Vec<&str> = first.steps.iter().map(|s| s.fact.as_str()).collect();
+    let used: Vec<&Cited> = first.steps.iter().map(|s| &s.fact).collect();
     let mut rest: Vec<Fact> = Vec::new();
     // Only facts free of unknowns (relations among the parameters, such as a given
     // `g = 9.81`) may determine a parameter: solving a law of motion for `g` would
     // divide by quantities nobody declared nonzero.
-    for f in facts.iter().filter(|f| !used.contains(&f.name.as_str())) {
+    for f in facts.iter().filter(|f| !used.contains(&&f.name)) {
         let v = match apply_steps(&f.value, &first.steps, signs) {
             Ok(v) => v,
             Err(_) => continue,
@@ -120,9 +121,9 @@ pub fn eliminate(
 /// factor the signs do not show nonzero is never assumed: the fact and the factor are
 /// kept for the explanation instead.
 fn multiple_of_a_fact(mut e: Elimination, facts: &[Fact], signs: &Assumptions) -> Elimination {
-    let used: Vec<&str> = e.steps.iter().map(|s| s.fact.as_str()).collect();
+    let used: Vec<&Cited> = e.steps.iter().map(|s| &s.fact).collect();
     let target_atoms = e.target.num().atoms();
-    for f in facts.iter().filter(|f| !used.contains(&f.name.as_str())) {
+    for f in facts.iter().filter(|f| !used.contains(&&f.name)) {
         let Ok(value) = apply_steps(&f.value, &e.steps, signs) else {
             continue;
         };
@@ -211,7 +212,7 @@ fn eliminate_left(
         // The best (fact, unknown) pair: no division by a quantity of unknown sign if
         // possible, then the fact with fewest unknowns.
         let mut best = best_pair(&unknowns, (&facts, &mut memo), is_unknown, signs, strict)?;
-        if best.as_ref().is_none_or(|b| b.0 .0) {
+        if best.as_ref().is_none_or(|b| b.0.divides) {
             // Every way to remove an unknown of the target divides: first remove another
             // unknown of the facts without dividing, if one can be.
             let mut others: Vec<AtomId> = Vec::new();
@@ -299,7 +300,7 @@ fn unknowns_of_target(
 }
 
 /// The facts kept after a substitution, their memos, and a contradiction found.
-type Substituted = (Vec<Fact>, Vec<Memo>, Option<String>);
+type Substituted = (Vec<Fact>, Vec<Memo>, Option<Cited>);
 
 /// The remaining facts (and their memos) with `u` replaced by `value`: facts that become
 /// zero or undefined are dropped. With `watch`, the first fact that becomes a nonzero
@@ -355,7 +356,18 @@ fn multiple_of((target, atoms): (&Rat, &[AtomId]), fact: &Rat, signs: &Assumptio
         .is_ok_and(|r| r.den().atoms().is_empty() || signs.poly(r.den()).is_nonzero())
 }
 
-type Pair = ((bool, bool, usize), usize, AtomId, Solution);
+/// How good a (fact, unknown) pair is to solve: smaller is better, field by field.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct Rank {
+    /// Solving divides by a quantity the signs do not show nonzero.
+    divides: bool,
+    /// The fact is not linear in the unknown.
+    nonlinear: bool,
+    /// The number of unknowns in the fact.
+    unknowns: usize,
+}
+
+type Pair = (Rank, usize, AtomId, Solution);
 
 /// A fact's ways of being solved (or none) for the unknowns tried, with the solution
 /// once it was needed.
@@ -390,10 +402,12 @@ fn best_pair(
                 continue;
             }
             let nonlinear = f.value.num().degree_in(*u) != 1 || f.value.den().contains(*u);
-            if best
-                .as_ref()
-                .is_some_and(|b| b.0 <= (false, nonlinear, n_unknowns))
-            {
+            let at_best = Rank {
+                divides: false,
+                nonlinear,
+                unknowns: n_unknowns,
+            };
+            if best.as_ref().is_some_and(|b| b.0 <= at_best) {
                 continue;
             }
             let Some(m) = memo.get_mut(i) else {
@@ -406,9 +420,12 @@ fn best_pair(
             let Some(Some((s, solution))) = m.get_mut(u) else {
                 continue;
             };
-            let rank = (s.divisor.is_some(), nonlinear, n_unknowns);
+            let rank = Rank {
+                divides: s.divisor.is_some(),
+                ..at_best
+            };
             // Only the pair chosen needs its solution.
-            if strict && rank.0 || best.as_ref().is_some_and(|b| rank >= b.0) {
+            if strict && rank.divides || best.as_ref().is_some_and(|b| rank >= b.0) {
                 continue;
             }
             let sol = match solution {
@@ -438,7 +455,7 @@ fn has_higher_derivative(f: &Rat, u: AtomId) -> bool {
 
 /// A fact that gives `u` only through `u^n` (n ≥ 2) while `u` is not declared positive
 /// or nonnegative, so that no principal root could be taken: its name and `n`.
-pub fn power_only(facts: &[Fact], u: AtomId, signs: &Assumptions) -> Option<(String, u32)> {
+pub fn power_only(facts: &[Fact], u: AtomId, signs: &Assumptions) -> Option<(Cited, u32)> {
     if matches!(signs.declared(u), Sign::Pos | Sign::NonNeg) {
         return None;
     }
@@ -634,18 +651,22 @@ fn sign_compatible(declared: Sign, value: Sign, is_zero: bool) -> bool {
 /// a symbol against its declared sign), found by eliminating atoms with provably nonzero
 /// coefficients only, described. The answer does not depend on the order of the
 /// symbols' names: every solved symbol's final value is checked against its declared sign.
-pub fn contradiction(facts: &[Fact], signs: &Assumptions) -> Option<String> {
+pub fn contradiction(facts: &[Fact], signs: &Assumptions) -> Option<Text> {
     contradiction_in(facts, signs, 2)
 }
 
 /// [`contradiction`], then again with what the facts left force to zero over the reals
 /// added to them, `rounds` more times (`u^2 + v^2 = 0` and `(v - 1)^2 + u^2 = 0`
 /// contradict each other only through `v = 0` and `v = 1`).
-fn contradiction_in(facts: &[Fact], signs: &Assumptions, rounds: u32) -> Option<String> {
-    let says_zero = |name: &str| format!("with the others, {name} says a nonzero quantity is zero");
+fn contradiction_in(facts: &[Fact], signs: &Assumptions, rounds: u32) -> Option<Text> {
+    let says_zero = |name: &Cited| {
+        Text::from("with the others, ")
+            .cited(std::slice::from_ref(name))
+            .and(" says a nonzero quantity is zero")
+    };
     let nonzero = |v: &Rat| super::zeros::definite_sign(v, signs).is_nonzero();
     let mut fs: Vec<Fact> = facts.to_vec();
-    let mut solved: Vec<(AtomId, Rat, String)> = Vec::new();
+    let mut solved: Vec<(AtomId, Rat, Cited)> = Vec::new();
     for _ in 0..=facts.len() {
         if let Some(f) = fs.iter().find(|f| nonzero(&f.value)) {
             return Some(says_zero(&f.name));
@@ -695,10 +716,10 @@ fn contradiction_in(facts: &[Fact], signs: &Assumptions, rounds: u32) -> Option<
                 Sign::NonPos => "<= 0",
                 _ => "!= 0",
             };
-            format!(
-                "with the others, {name} gives {x} = {}, against the declared {x} {sign}",
+            Text::from("with the others, ").cited(&[name]).and(&format!(
+                " gives {x} = {}, against the declared {x} {sign}",
                 crate::normal::print::plain(&v)
-            )
+            ))
         })
     });
     if against_sign.is_some() || rounds == 0 || implied.is_empty() {
