@@ -20,7 +20,7 @@ done
 times=()
 for ((r = 0; r < runs; r++)); do
   start=$(date +%s%N)
-  ./target/release/rigor mark --reference tests/mark/reference.deriv "$class" --format csv >/dev/null
+  "${CARGO_TARGET_DIR:-target}/release/rigor" mark --reference tests/mark/reference.deriv "$class" --format csv >/dev/null
   end=$(date +%s%N)
   ms=$(((end - start) / 1000000))
   times+=("$ms")

@@ -146,6 +146,10 @@ enum Command {
         /// Output format.
         #[arg(long, value_enum, default_value_t = MarkFormat::Human)]
         format: MarkFormat,
+        /// A folder a submission's `use` may import from (a course library; repeatable).
+        /// Without it a submission may import nothing.
+        #[arg(long)]
+        allow_use: Vec<std::path::PathBuf>,
         /// Time budget of one submission, in seconds: once spent, its remaining steps
         /// are undecided (the row says so), and the rest of the class is unaffected; 0: no
         /// budget.
@@ -265,10 +269,16 @@ fn main() -> ExitCode {
             feedback,
             reveal,
             format,
+            allow_use,
             budget,
         } => cli::mark(
             (&reference, &submissions),
-            (summary, feedback.as_deref(), reveal),
+            &cli::MarkReports {
+                summary,
+                feedback: feedback.as_deref(),
+                reveal,
+                allow_use: &allow_use,
+            },
             format,
             (timeout, seconds(budget, 30.0)),
             &opts,

@@ -103,6 +103,12 @@ pub enum ImportError {
         /// The offset of the first invalid byte.
         offset: usize,
     },
+    /// A file the world does not let this file import (a submission marked by a tutor
+    /// may import only the course library).
+    NotAllowed {
+        /// The path as written.
+        path: String,
+    },
     /// A file that exists but cannot be read (permissions, a folder, …).
     Unreadable {
         /// The path as written.
@@ -135,6 +141,10 @@ impl fmt::Display for ImportError {
             ImportError::NotUtf8 { path, offset } => write!(
                 f,
                 "cannot read \"{path}\": the file is not valid UTF-8 (invalid byte at offset {offset})"
+            ),
+            ImportError::NotAllowed { path } => write!(
+                f,
+                "\"{path}\" may not be imported here: a submission may import only the course library its tutor allows"
             ),
             ImportError::Unreadable { path, reason } => {
                 write!(f, "cannot read \"{path}\": {reason}")

@@ -37,6 +37,9 @@ use rigor::syntax::ast::{Item, StmtKind};
 use rigor::syntax::{parse_expr, parse_file, ParseOptions, SyntaxError};
 use std::path::Path;
 
+mod mark;
+pub use mark::{mark, Reports as MarkReports};
+
 fn report_syntax(e: &SyntaxError, what: &str, src: &str) {
     let d = Diagnostic::error(
         Code::Syntax,
@@ -77,7 +80,7 @@ fn name_the_flags(reports: &mut [FileReport]) {
 
 /// Why a file could not be read, with the flag that raises the size limit when that is
 /// why.
-fn read_error(e: &rigor::files::ReadError) -> String {
+pub(crate) fn read_error(e: &rigor::files::ReadError) -> String {
     match e {
         rigor::files::ReadError::TooLarge { .. } => format!("{e} (see --max-file-size)"),
         _ => e.to_string(),
@@ -690,110 +693,4 @@ pub fn lint(
     } else {
         0
     }
-}
-
-/// `rigor mark`: exit 0 when the class was marked (whatever the marks), 2 for a bad
-/// reference or bad options.
-pub fn mark(
-    (reference, submissions): (&Path, &[std::path::PathBuf]),
-    (summary, feedback, reveal): (bool, Option<&Path>, bool),
-    format: crate::MarkFormat,
-    (timeout, budget): (std::time::Duration, std::time::Duration),
-    opts: &ParseOptions,
-) -> u8 {
-    use rigor::files::FsResolver;
-    let options = rigor::check::Options {
-        parse: *opts,
-        // The limits `main` installed on this thread, for the checking threads too.
-        limits: rigor::normal::limits::current(),
-        timeout,
-        ..rigor::check::Options::default()
-    };
-    // Each submission gets its own budget; the reference is checked without one.
-    let sub_options = rigor::check::Options {
-        file_budget: Some(budget),
-        ..options.clone()
-    };
-    let ref_dir = reference
-        .parent()
-        .map_or_else(|| Path::new(".").to_path_buf(), Path::to_path_buf);
-    let ref_report = rigor::files::check_file(reference, &ref_dir, &options);
-    if !ref_report.ok() {
-        errln!(
-            "error: the reference {} does not verify:",
-            reference.display()
-        );
-        err!("{}", rigor::render::human::report(&ref_report, false));
-        return 2;
-    }
-    let expected = rigor::mark::expected(&ref_report);
-    let files = match rigor::files::collect_all(submissions) {
-        Ok(f) => f,
-        Err(e) => {
-            errln!("error: {e}");
-            return 2;
-        }
-    };
-    let ref_resolver = FsResolver {
-        root: ref_dir.clone(),
-        max_file_size: options.max_file_size,
-    };
-    let rows = rigor::files::parallel(&files, |(path, root)| {
-        let name = path.display().to_string();
-        match rigor::files::read(path, options.max_file_size) {
-            Err(e) => rigor::mark::unreadable(&name, read_error(&e), &expected),
-            Ok(text) => {
-                let sub_resolver = FsResolver {
-                    root: root.clone(),
-                    max_file_size: options.max_file_size,
-                };
-                rigor::mark::mark(
-                    &ref_report,
-                    &expected,
-                    (&name, &text),
-                    &sub_options,
-                    (&ref_resolver, &sub_resolver),
-                )
-            }
-        }
-    });
-    match format {
-        crate::MarkFormat::Csv => out!("{}", rigor::render::mark::csv(&rows)),
-        crate::MarkFormat::Json => out!("{}", rigor::render::mark::json(&rows)),
-        crate::MarkFormat::Human => {
-            if summary {
-                out!("{}", rigor::render::mark::summary(&rows));
-            } else {
-                out!("{}", rigor::render::mark::human(&rows));
-            }
-        }
-    }
-    if let Some(dir) = feedback {
-        if let Err(e) = std::fs::create_dir_all(dir) {
-            errln!("error: cannot create {}: {e}", dir.display());
-            return 2;
-        }
-        let reveal_text = reveal.then_some(ref_report.source.as_str());
-        for (k, r) in rows.iter().enumerate() {
-            let stem: String = Path::new(&r.file)
-                .file_stem()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or_default()
-                .chars()
-                .map(|c| {
-                    if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
-                        c
-                    } else {
-                        '_'
-                    }
-                })
-                .collect();
-            let path = dir.join(format!("{k:03}-{stem}.md"));
-            if let Err(e) = std::fs::write(&path, rigor::render::mark::feedback(r, reveal_text)) {
-                errln!("error: cannot write {}: {e}", path.display());
-                return 2;
-            }
-        }
-    }
-    0
 }

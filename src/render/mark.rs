@@ -3,17 +3,82 @@
 //! their names and text are escaped wherever they appear.
 
 use crate::check::Status;
-use crate::mark::{Outcome, Row};
+use crate::diag::Mistake;
+use crate::mark::facts::{FactKind, Standing};
+use crate::mark::{Outcome, ResultMark, Row, Why};
 use serde_json::json;
+
+/// Why a result earns nothing, in words.
+fn why(w: &Why) -> String {
+    match w {
+        Why::OwnAssumption { label, line, kind } => {
+            let what = match (label, kind) {
+                (Some(l), _) => format!(" [{l}]"),
+                (None, FactKind::Let) => " (a `let`)".into(),
+                (None, FactKind::Where) => " (a `where` value)".into(),
+                (None, _) => String::new(),
+            };
+            format!("rests on your own assumption{what}, line {line}, which the problem does not give")
+        }
+        Why::Contradiction { label, line } => {
+            let what = label.as_ref().map_or(String::new(), |l| format!(" [{l}]"));
+            format!("rests on your fact{what}, line {line}, which contradicts your other facts")
+        }
+        Why::Import { line } => format!(
+            "rests on the `use` on line {line}, which imported nothing (a submission may import only the course library's verified results)"
+        ),
+        Why::DoesNotFollow { line } => {
+            format!("your claim on line {line} does not follow in your own work")
+        }
+        Why::Unmatched { name } => format!(
+            "it is written with `{name}`, which no fact of the problem matches to one of its quantities"
+        ),
+    }
+}
 
 fn outcome(o: &Outcome) -> String {
     match o {
         Outcome::Right => "right".into(),
         Outcome::Wrong => "wrong".into(),
         Outcome::Missing => "missing".into(),
-        Outcome::Undecided(why) => format!("undecided ({why})"),
-        Outcome::NotCredited(why) => format!("not credited ({why})"),
+        Outcome::Undecided(w) => format!("undecided ({w})"),
+        Outcome::NotCredited(w) => format!("not credited ({})", why(w)),
     }
+}
+
+/// `an earlier claim, line 7, says otherwise`, if one does.
+fn earlier(r: &ResultMark) -> Option<String> {
+    match r.earlier.as_slice() {
+        [] => None,
+        [l] => Some(format!("an earlier claim, line {l}, says otherwise")),
+        ls => Some(format!(
+            "earlier claims, lines {}, say otherwise",
+            ls.iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
+    }
+}
+
+/// A fact of the submission that is not the problem's, in words.
+fn own_fact(f: &crate::mark::facts::Fact) -> String {
+    let what = match (&f.label, f.kind) {
+        (Some(l), _) => format!("[{l}], line {}", f.line),
+        (None, FactKind::Use) => format!("`use`, line {}", f.line),
+        (None, FactKind::Let) => format!("`let`, line {}", f.line),
+        (None, FactKind::Where) => format!("`where`, line {}", f.line),
+        (None, _) => format!("line {}", f.line),
+    };
+    let standing = match f.standing {
+        Standing::Own => "your own assumption: the problem does not give it",
+        Standing::Contradiction => "contradicts your other facts",
+        Standing::ImportFailed => {
+            "imported nothing: a submission may import only the course library's verified results"
+        }
+        Standing::Problem => "the problem's",
+    };
+    format!("{what}: {standing}")
 }
 
 /// Control characters and line breaks out of an untrusted name.
@@ -23,11 +88,14 @@ fn clean(s: &str) -> String {
         .collect()
 }
 
-/// `s → x, Fr → F`: the names a submission declared differently.
+/// `s → x, P → −F`: the names a submission declared differently.
 fn mapped(r: &Row) -> String {
     r.mapping
         .iter()
-        .map(|(a, b)| format!("{a} → {b}"))
+        .map(|m| {
+            let sign = if m.negated { "−" } else { "" };
+            format!("{} → {sign}{}", m.from, m.to)
+        })
         .collect::<Vec<_>>()
         .join(", ")
 }
@@ -46,22 +114,36 @@ pub fn human(rows: &[Row]) -> String {
             "steps {}/{} verified, results {right}/{all} right\n",
             r.steps.0, r.steps.1
         ));
-        if let Some((line, kind, msg)) = &r.first_failure {
+        if let Some(f) = &r.first_failure {
             out.push_str(&format!(
-                "  first mistake: line {line} ({kind}): {}\n",
-                clean(msg)
+                "  first mistake: line {} ({}): {}\n",
+                f.line,
+                f.kind,
+                clean(&f.diagnostic.message)
             ));
         }
         if !r.mapping.is_empty() {
             out.push_str(&format!("  names matched by role: {}\n", clean(&mapped(r))));
         }
-        for (e, o) in &r.results {
+        if !r.unmatched.is_empty() {
+            out.push_str(&format!(
+                "  names no fact of the problem matches: {}\n",
+                clean(&r.unmatched.join(", "))
+            ));
+        }
+        for f in &r.own {
+            out.push_str(&format!("  fact {}\n", clean(&own_fact(f))));
+        }
+        for m in &r.results {
             out.push_str(&format!(
                 "  [{}] {}: {}\n",
-                e.label,
-                clean(&e.lhs),
-                outcome(o)
+                m.expected.label,
+                clean(&m.expected.lhs),
+                clean(&outcome(&m.outcome))
             ));
+            if let Some(e) = earlier(m) {
+                out.push_str(&format!("    {e}\n"));
+            }
         }
     }
     out
@@ -89,7 +171,7 @@ pub fn summary(rows: &[Row]) -> String {
         let (right, all) = r.results_score();
         let first = match (&r.unreadable, &r.first_failure) {
             (Some(why), _) => format!("not marked: {}", cell(why)),
-            (None, Some((line, kind, _))) => format!("line {line} ({kind})"),
+            (None, Some(f)) => format!("line {} ({})", f.line, f.kind),
             (None, None) => "none".into(),
         };
         out.push_str(&format!(
@@ -102,29 +184,71 @@ pub fn summary(rows: &[Row]) -> String {
     out
 }
 
+/// One CSV cell of untrusted text: control characters out, a leading `=`, `+`, `-` or
+/// `@` (a spreadsheet formula) behind a `'` (OWASP, CSV injection), quoted when it holds
+/// a comma or a quote.
 fn csv_cell(s: &str) -> String {
-    if s.contains([',', '"', '\n', '\r']) {
+    let mut s = clean(s);
+    if s.starts_with(['=', '+', '-', '@']) {
+        s.insert(0, '\'');
+    }
+    if s.contains([',', '"']) {
         format!("\"{}\"", s.replace('"', "\"\""))
     } else {
-        s.to_string()
+        s
     }
+}
+
+/// The note of a row: why it was not marked, else why results earned nothing and which
+/// of its facts are not the problem's.
+fn note(r: &Row) -> String {
+    if let Some(why) = &r.unreadable {
+        return format!("not marked: {why}");
+    }
+    let mut notes: Vec<String> = Vec::new();
+    for m in &r.results {
+        let n = match &m.outcome {
+            Outcome::NotCredited(w) => format!("[{}] not credited: {}", m.expected.label, why(w)),
+            Outcome::Undecided(w) => format!("[{}] undecided: {w}", m.expected.label),
+            _ => continue,
+        };
+        if !notes.contains(&n) {
+            notes.push(n);
+        }
+    }
+    if !r.own.is_empty() {
+        let facts: Vec<String> = r
+            .own
+            .iter()
+            .map(|f| match (&f.label, f.kind) {
+                (Some(l), _) => format!("[{l}] line {}", f.line),
+                (None, FactKind::Use) => format!("use line {}", f.line),
+                (None, FactKind::Let) => format!("let line {}", f.line),
+                (None, FactKind::Where) => format!("where line {}", f.line),
+                (None, _) => format!("line {}", f.line),
+            })
+            .collect();
+        notes.push(format!("facts not the problem's: {}", facts.join(", ")));
+    }
+    notes.join("; ")
 }
 
 /// The gradebook CSV.
 pub fn csv(rows: &[Row]) -> String {
-    let mut out = String::from("file,steps_verified,steps_total,first_failure_line,first_failure_kind,results_correct,results_total\n");
+    let mut out = String::from("file,steps_verified,steps_total,first_failure_line,first_failure_kind,results_correct,results_total,note\n");
     for r in rows {
         let (right, all) = r.results_score();
         let (line, kind) = match &r.first_failure {
-            Some((l, k, _)) => (l.to_string(), k.to_string()),
-            None if r.unreadable.is_some() => (String::new(), "syntax".into()),
-            None => (String::new(), String::new()),
+            Some(f) => (f.line.to_string(), f.kind),
+            None if r.unreadable.is_some() => (String::new(), "not_read"),
+            None => (String::new(), ""),
         };
         out.push_str(&format!(
-            "{},{},{},{line},{kind},{right},{all}\n",
+            "{},{},{},{line},{kind},{right},{all},{}\n",
             csv_cell(&r.file),
             r.steps.0,
-            r.steps.1
+            r.steps.1,
+            csv_cell(&note(r))
         ));
     }
     out
@@ -138,17 +262,27 @@ pub fn json(rows: &[Row]) -> String {
             let results: Vec<serde_json::Value> = r
                 .results
                 .iter()
-                .map(|(e, o)| json!({"label": e.label, "quantity": e.lhs, "outcome": outcome(o)}))
+                .map(|m| {
+                    json!({
+                        "label": m.expected.label,
+                        "quantity": m.expected.lhs,
+                        "outcome": outcome(&m.outcome),
+                        "line": m.line,
+                        "earlier_disagreeing": m.earlier,
+                    })
+                })
                 .collect();
             json!({
                 "file": r.file,
                 "steps_verified": r.steps.0,
                 "steps_total": r.steps.1,
-                "first_failure": r.first_failure.as_ref().map(|(l, k, m)| json!({"line": l, "kind": k, "message": m})),
+                "first_failure": r.first_failure.as_ref().map(|f| json!({"line": f.line, "kind": f.kind, "message": f.diagnostic.message.to_string()})),
                 "results_correct": right,
                 "results_total": all,
                 "results": results,
-                "names_mapped": r.mapping.iter().map(|(a, b)| json!({"submission": a, "reference": b})).collect::<Vec<_>>(),
+                "names_mapped": r.mapping.iter().map(|m| json!({"submission": m.from, "reference": m.to, "negated": m.negated})).collect::<Vec<_>>(),
+                "names_unmatched": r.unmatched,
+                "facts_not_credited": r.own.iter().map(own_fact).collect::<Vec<_>>(),
                 "not_marked": r.unreadable,
             })
             .to_string()
@@ -157,25 +291,137 @@ pub fn json(rows: &[Row]) -> String {
         .collect()
 }
 
-/// The hint for a kind of first mistake, in plain words.
-fn hint(kind: &str) -> &'static str {
-    match kind {
-        "sign" => "check the direction you took as positive for this term",
-        "factor" => "compare the sizes of the two sides: a factor is off",
-        "power" => "check the power of each quantity in this step",
-        "missing_term" => "a term is missing on one side: compare the terms step by step",
-        "extra_term" => "a term appears that should not be there",
-        "missing_fact" => {
+/// The hint for a kind of first mistake, in plain words; `term` is the term the checker
+/// points at, as written, when it points at one.
+fn hint(kind: &str, term: Option<&str>) -> String {
+    match (kind, term) {
+        ("sign", Some(t)) => format!(
+            "check the direction you took as positive for the term {}",
+            code(t)
+        ),
+        ("sign", None) => {
+            "the two sides differ in sign: check the direction you took as positive".into()
+        }
+        ("factor", _) => "compare the sizes of the two sides: a factor is off".into(),
+        ("power", _) => "check the power of each quantity in this step".into(),
+        ("missing_term", _) => {
+            "a term is missing on one side: compare the terms step by step".into()
+        }
+        ("extra_term", _) => "a term appears that should not be there".into(),
+        ("missing_fact", _) => {
             "this step needs a fact (an equation of motion, a constraint) you have not written"
+                .into()
         }
-        "undeclared" => "a name is used before it is declared (a typo?)",
-        "syntax" => "rigor could not read this line",
-        "units" => "the two sides are not in the same units",
-        "false_fact" => {
-            "this fact is false (or your facts contradict each other): anything would follow from it, so nothing that rests on it counts"
+        ("undeclared", _) => "a name is used before it is declared (a typo?)".into(),
+        ("syntax", _) => "rigor could not read this line".into(),
+        ("import", _) => {
+            "a submission may import only the course library its tutor allows".into()
         }
-        _ => "rigor could not decide this step",
+        ("units", _) => "the two sides are not in the same units".into(),
+        ("false_fact", _) => {
+            "this fact is false (or your facts contradict each other): anything would follow from it, so nothing that rests on it counts".into()
+        }
+        _ => "rigor could not decide this step".into(),
     }
+}
+
+/// Untrusted text as a Markdown code span (a fence longer than any run of backticks in it).
+fn code(s: &str) -> String {
+    let s = clean(s);
+    let mut run = 0;
+    let mut longest = 0;
+    for c in s.chars() {
+        run = if c == '`' { run + 1 } else { 0 };
+        longest = longest.max(run);
+    }
+    let fence = "`".repeat(longest + 1);
+    let pad = if s.starts_with('`') || s.ends_with('`') {
+        " "
+    } else {
+        ""
+    };
+    format!("{fence}{pad}{s}{pad}{fence}")
+}
+
+/// A message for Markdown: its `…` spans as code, the rest escaped.
+fn inline(msg: &str) -> String {
+    let parts: Vec<&str> = msg.split('`').collect();
+    if parts.len() % 2 == 0 {
+        // An odd number of backticks: no spans to trust.
+        return crate::render::text::markdown_text(&clean(msg));
+    }
+    parts
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            if k % 2 == 1 {
+                code(p)
+            } else {
+                crate::render::text::markdown_text(&clean(p))
+            }
+        })
+        .collect()
+}
+
+/// Text for a fenced block: control characters out (line breaks kept), and no line that
+/// could close the fence.
+fn fenced(s: &str) -> String {
+    s.chars()
+        .map(|c| if c.is_control() && c != '\n' { '?' } else { c })
+        .collect::<String>()
+        .replace("```", "'''")
+}
+
+/// The term a sign mistake is about, as the checker names it under the spot (the first
+/// `…` of its label; for display only: the kind was decided from [`Mistake`]).
+fn pointed_term(r: &Row) -> Option<String> {
+    let f = r.first_failure.as_ref()?;
+    if f.diagnostic.mistake != Some(Mistake::Sign) {
+        return None;
+    }
+    let (_, label) = f.diagnostic.primary.as_ref()?;
+    let mut parts = label.split('`').skip(1);
+    let term = parts.next()?;
+    parts.next().map(|_| term.to_string())
+}
+
+/// The steps of a submission, one line each.
+fn steps(r: &Row) -> String {
+    let mut out = String::new();
+    if let Some(rep) = &r.report {
+        let idx = crate::diag::LineIndex::new(&rep.source);
+        for l in rep.claims.iter().flat_map(|c| &c.links) {
+            let v = match l.status {
+                Status::Verified { .. } => "verified",
+                Status::Failed => "does not follow",
+                Status::Undecided => "not shown to follow",
+                Status::Error => "not read",
+                Status::NotChecked => "not checked (it cites a step that does not follow)",
+            };
+            let line = idx.line_col(l.span.start).0;
+            out.push_str(&format!("- line {line}: {v}\n"));
+        }
+    }
+    if out.is_empty() {
+        out.push_str("- none that could be checked\n");
+    }
+    out
+}
+
+/// The first mistake as `check` shows it: the message, the student's line with the spot
+/// marked, both sides, the counterexample, the factor, did-you-mean; then a hint.
+fn first_mistake(r: &Row) -> String {
+    let (Some(f), Some(rep)) = (&r.first_failure, &r.report) else {
+        return String::new();
+    };
+    let shown = crate::diag::render(&f.diagnostic, &clean(&r.file), &rep.source);
+    format!(
+        "\n## First mistake\n\nLine {}: {}.\n\n```text\n{}```\n\nHint: {}.\n",
+        f.line,
+        inline(&f.diagnostic.message),
+        fenced(&shown),
+        hint(f.kind, pointed_term(r).as_deref())
+    )
 }
 
 /// The feedback file for one submission (Markdown). The reference's working is shown
@@ -188,36 +434,22 @@ pub fn feedback(r: &Row, reveal: Option<&str>) -> String {
     if let Some(why) = &r.unreadable {
         out.push_str(&format!(
             "Your file could not be marked: {}\n",
-            crate::render::text::markdown_text(why)
+            crate::render::text::markdown_text(&clean(why))
         ));
         return out;
     }
     out.push_str(&format!(
-        "{} of {} steps verified.\n\n## Steps\n\n",
-        r.steps.0, r.steps.1
+        "{} of {} steps verified.\n\n## Steps\n\n{}",
+        r.steps.0,
+        r.steps.1,
+        steps(r)
     ));
-    if let Some(rep) = &r.report {
-        let idx = crate::diag::LineIndex::new(&rep.source);
-        for c in &rep.claims {
-            for l in &c.links {
-                let v = match l.status {
-                    Status::Verified { .. } => "verified",
-                    Status::Failed => "does not follow",
-                    Status::Undecided => "not shown to follow",
-                    Status::Error => "not read",
-                    Status::NotChecked => "not checked (it cites a step that does not follow)",
-                };
-                let line = idx.line_col(l.span.start).0;
-                out.push_str(&format!("- line {line}: {v}\n"));
-            }
+    out.push_str(&first_mistake(r));
+    if !r.own.is_empty() {
+        out.push_str("\n## Your facts\n\n");
+        for f in &r.own {
+            out.push_str(&format!("- {}\n", inline(&own_fact(f))));
         }
-    }
-    if let Some((line, kind, msg)) = &r.first_failure {
-        out.push_str(&format!(
-            "\n## First mistake\n\nLine {line}: {}.\n\nHint: {}.\n",
-            crate::render::text::markdown_text(msg),
-            hint(kind)
-        ));
     }
     out.push_str("\n## Results\n\n");
     if !r.mapping.is_empty() {
@@ -226,20 +458,35 @@ pub fn feedback(r: &Row, reveal: Option<&str>) -> String {
             crate::render::text::markdown_text(&clean(&mapped(r)))
         ));
     }
-    for (e, o) in &r.results {
-        let said = match o {
+    if !r.unmatched.is_empty() {
+        out.push_str(&format!(
+            "No fact of the problem matches these names of yours to its quantities: {}.\n\n",
+            r.unmatched
+                .iter()
+                .map(|n| code(n))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    for m in &r.results {
+        let said = match &m.outcome {
             Outcome::Right => "right".to_string(),
             Outcome::Wrong => "not what it should be".to_string(),
             Outcome::Missing => "not found in your work".to_string(),
-            Outcome::Undecided(_) => "could not be compared".to_string(),
-            Outcome::NotCredited(_) => {
-                "not credited: your work reaches it only through facts that are false or contradict each other".to_string()
-            }
+            Outcome::Undecided(w) => format!("could not be compared: {}", inline(w)),
+            Outcome::NotCredited(w) => format!("not credited: {}", inline(&why(w))),
         };
-        out.push_str(&format!("- `{}`: {said}\n", e.lhs.replace('`', "'")));
+        let at = m.line.map_or(String::new(), |l| format!(" (line {l})"));
+        out.push_str(&format!("- {}{at}: {said}\n", code(&m.expected.lhs)));
+        if let Some(e) = earlier(m) {
+            out.push_str(&format!("  ({e})\n"));
+        }
     }
     if let Some(text) = reveal {
-        out.push_str(&format!("\n## Reference\n\n```text\n{text}\n```\n"));
+        out.push_str(&format!(
+            "\n## Reference\n\n```text\n{}\n```\n",
+            fenced(text)
+        ));
     }
     out
 }
