@@ -14,6 +14,7 @@ pub mod latex;
 pub mod lint;
 pub mod mark;
 pub mod markdown;
+mod pieces;
 mod solution;
 mod steps;
 mod text;
