@@ -74,9 +74,8 @@ impl Checker<'_, '_> {
         deadline: Option<Deadline>,
     ) {
         let span = claim.span;
-        if let Some((name, msg)) = self.uses_failed_name(chain) {
-            self.noted_uses.insert(name);
-            return self.push_not_checked_claim(claim, chain, msg);
+        if let Some(failed_use) = self.uses_failed_name(chain) {
+            return self.push_not_checked_use(claim, chain, failed_use);
         }
         let Some(subs) = self.where_subs(where_) else {
             return self.push_error_claim(claim, chain);
@@ -481,6 +480,17 @@ impl Checker<'_, '_> {
         let (_, name, why) = names.into_iter().next()?;
         let msg = Text::from(format!("not checked: it uses `{name}`, ")).then(&why);
         Some((name, msg))
+    }
+
+    /// A claim not checked because it uses a name that failed (noted once per name).
+    fn push_not_checked_use(
+        &mut self,
+        claim: ClaimReport,
+        chain: &Chain,
+        (name, msg): (String, Text),
+    ) {
+        self.noted_uses.insert(name);
+        self.push_not_checked_claim(claim, chain, msg);
     }
 
     /// A claim none of whose links is checked (`msg` says why, as a note).

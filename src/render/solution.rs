@@ -5,13 +5,13 @@
 //! and each renderer escapes it for its own output.
 
 use super::expr::{chain_latex_in, expr_latex_in, rel_latex, symbol, Ctx};
+#[cfg(test)]
+pub(crate) use super::pieces::break_sum;
+pub(crate) use super::pieces::{note_inlines, rich, row_math, words_and_math};
 use super::steps::{Steps, Work};
 use super::Detail;
 use crate::check::report::{ClaimReport, FileReport, Status};
 use crate::diag::{line_col, Diagnostic, Note, Severity};
-pub(crate) use super::pieces::{note_inlines, rich, row_math, words_and_math};
-#[cfg(test)]
-pub(crate) use super::pieces::break_sum;
 use crate::syntax::ast::{
     Assign, BodyDef, By, Chain, ExprKind, File, Item, Label, Name, ProsePart, SignDecl, Span, Stmt,
     StmtKind,
