@@ -131,17 +131,27 @@ fn numbered_heading(paragraph: &str) -> bool {
     keyword && words.next().is_some_and(numbered)
 }
 
-/// The environments whose content is display math.
+/// The environments whose content is display math (each also starred).
 const ENVIRONMENTS: [&str; 8] = [
     "equation",
-    "equation*",
+    "displaymath",
     "align",
-    "align*",
+    "alignat",
+    "flalign",
     "gather",
-    "gather*",
     "multline",
-    "multline*",
+    "eqnarray",
 ];
+
+/// The display environment that opens at the start of `rest`, and the text that closes
+/// it.
+fn environment(rest: &str) -> Option<String> {
+    let tail = rest.strip_prefix("\\begin{")?;
+    let name = &tail[..tail.find('}')?];
+    ENVIRONMENTS
+        .contains(&name.trim_end_matches('*'))
+        .then(|| format!("\\end{{{name}}}"))
+}
 
 fn latex(doc: &str) -> Vec<Piece> {
     let mut out = Vec::new();
@@ -166,23 +176,20 @@ fn latex(doc: &str) -> Vec<Piece> {
             i += 1;
             continue;
         }
+        // An environment is read whole, `\begin{…}` and `\end{…}` included: how its rows
+        // go together depends on its name.
         let open = [("\\[", "\\]"), ("$$", "$$")]
             .into_iter()
             .find(|(o, _)| rest.starts_with(o))
-            .map(|(o, c)| (o.len(), c.to_string()))
-            .or_else(|| {
-                let env = ENVIRONMENTS
-                    .iter()
-                    .find(|e| rest.starts_with(&format!("\\begin{{{e}}}")))?;
-                Some((env.len() + 8, format!("\\end{{{env}}}")))
-            });
-        if let Some((olen, close)) = open {
+            .map(|(o, c)| (o.len(), c.to_string(), 0))
+            .or_else(|| environment(rest).map(|close| (0, close.clone(), close.len())));
+        if let Some((olen, close, keep)) = open {
             let body_start = i + olen;
             let Some(k) = doc[body_start..].find(&close) else {
                 break;
             };
             out.push(Piece::Math {
-                text: doc[body_start..body_start + k].to_string(),
+                text: doc[body_start..body_start + k + keep].to_string(),
                 start: body_start,
             });
             i = body_start + k + close.len();
@@ -193,38 +200,9 @@ fn latex(doc: &str) -> Vec<Piece> {
     out
 }
 
-/// The chains of one display: one per line of an `align` (split at `\\`, outside
-/// braces), each with its offset in the display's text.
-pub fn chain_lines(text: &str) -> Vec<(&str, usize)> {
-    let mut out = Vec::new();
-    let mut depth = 0i32;
-    let mut start = 0;
-    let mut escaped = false;
-    let mut chars = text.char_indices().peekable();
-    while let Some((k, c)) = chars.next() {
-        if escaped {
-            escaped = false;
-            continue;
-        }
-        match c {
-            '{' => depth += 1,
-            '}' => depth -= 1,
-            '\\' if depth == 0 && chars.peek().is_some_and(|(_, n)| *n == '\\') => {
-                out.push((text.get(start..k).unwrap_or(""), start));
-                chars.next();
-                start = k + 2;
-            }
-            '\\' => escaped = true,
-            _ => {}
-        }
-    }
-    out.push((text.get(start..).unwrap_or(""), start));
-    out.retain(|(s, _)| !s.trim().is_empty());
-    out
-}
-
-/// The relations of one chain line, each with its offset in the line. A line may hold
-/// several, set apart by `\quad`/`\qquad` or joined by an arrow (`\rightarrow`,
+/// The relations of one cleaned display (see `display::clean`), each with its offset
+/// in it. A display may hold several, set apart by [`super::display::SEP`], by
+/// `\quad`/`\qquad`, by a run of `~` between two relations, or joined by an arrow (`\rightarrow`,
 /// `\Rightarrow`, `\implies`); a part with no relation is a label (`\sum F_x`,
 /// `(5.1)`) and is left out, as is a label before a colon (`\sum M(A): …`).
 pub fn relations(line: &str) -> Vec<(&str, usize)> {
@@ -248,6 +226,20 @@ pub fn relations(line: &str) -> Vec<(&str, usize)> {
         match bytes[k] {
             b'{' => depth += 1,
             b'}' => depth -= 1,
+            super::display::SEP => {
+                parts.push((start, k));
+                start = k + 1;
+            }
+            // A run of `~` between two relations sets them apart; elsewhere it is a space.
+            b'~' if depth == 0 => {
+                let run = line[k..].bytes().take_while(|b| *b == b'~').count();
+                if has_relation(&line[start..k]) && has_relation(&line[k + run..]) {
+                    parts.push((start, k));
+                    start = k + run;
+                }
+                k += run;
+                continue;
+            }
             b'\\' => {
                 let name_len = line[k + 1..]
                     .bytes()

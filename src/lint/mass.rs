@@ -168,6 +168,7 @@ pub(super) fn over_prose_mass(
                 verdict,
                 diagnostics: Vec::new(),
                 assuming: Vec::new(),
+                defines: None,
             }),
         }
     }

@@ -5,6 +5,7 @@
 //! say), a chain whose left side is a lone new symbol defining it for later chains.
 
 use crate::diag::{Code, Mistake};
+mod display;
 mod extract;
 mod mass;
 
@@ -26,6 +27,9 @@ pub enum Verdict {
     Failed,
     /// It depends on something the document defines in prose, or rigor cannot read it.
     NeedsContext,
+    /// It states what a new symbol stands for (`I_G = \frac{mL^2}{12}`, the symbol used
+    /// nowhere before): a definition, taken as the notes give it and not checked.
+    Defined,
 }
 
 /// One chain of a document and what became of it.
@@ -40,6 +44,8 @@ pub struct ChainReport {
     /// For a verified chain: what its links assume that the declared signs do not show
     /// (`b F m != 0`), each once.
     pub assuming: Vec<String>,
+    /// The new symbol a chain's first link defines (`I_G`), as rigor names it.
+    pub defines: Option<String>,
 }
 
 /// Everything found in one document.
@@ -85,6 +91,8 @@ struct Placed {
     /// `rigor:` comment) or defined: then a first link that does not hold is a mistake,
     /// not a relation taken from elsewhere.
     firm: bool,
+    /// The new symbol the first link defines, if it does.
+    defines: Option<String>,
 }
 
 /// What the notes derive under one heading.
@@ -308,7 +316,7 @@ pub fn lint(name: &str, doc: &str, kind: DocKind, opts: &Options) -> LintReport 
     };
     let mut directives = String::new();
     let mut names: HashSet<String> = HashSet::new();
-    let lines = LineIndex::new(doc);
+    let mut cleaned = doc.to_string();
     let mut scope = Scope::default();
     let mut scopes: Vec<Scope> = Vec::new();
     // The last expression of the previous chain: a display starting with `=` goes on.
@@ -351,26 +359,30 @@ pub fn lint(name: &str, doc: &str, kind: DocKind, opts: &Options) -> LintReport 
                 scope.items.push(Item::Directive(text, words));
             }
             Piece::Math { text, start } => {
-                for (line, off) in extract::chain_lines(&text) {
-                    for (rel, within) in extract::relations(line) {
-                        let at = start + off + within;
-                        let (unread, parsed) = read(rel, at, last.as_ref(), &popts);
-                        report.chains.extend(unread);
-                        match parsed {
-                            None => last = None,
-                            Some(chain) => {
-                                last = chain.links.last().map(|l| l.rhs.clone());
-                                let body = directives
-                                    .lines()
-                                    .any(|l| l.trim_start().starts_with("body"));
-                                let (prose, rest) = if body {
-                                    (Vec::new(), Some(chain))
-                                } else {
-                                    mass::over_prose_mass(chain, (opts, &cache))
-                                };
-                                report.chains.extend(prose);
-                                scope.items.extend(rest.map(Item::Chain));
-                            }
+                // The display as the reader sees it, markup blanked, offsets kept; the
+                // derivation is made from the document with its displays so cleaned.
+                let text = display::clean(&text);
+                if doc.get(start..start + text.len()).is_some() {
+                    cleaned.replace_range(start..start + text.len(), &text);
+                }
+                for (rel, at) in extract::relations(&text) {
+                    let at = start + at;
+                    let (unread, parsed) = read(rel, at, last.as_ref(), &popts);
+                    report.chains.extend(unread);
+                    match parsed {
+                        None => last = None,
+                        Some(chain) => {
+                            last = chain.links.last().map(|l| l.rhs.clone());
+                            let body = directives
+                                .lines()
+                                .any(|l| l.trim_start().starts_with("body"));
+                            let (prose, rest) = if body {
+                                (Vec::new(), Some(chain))
+                            } else {
+                                mass::over_prose_mass(chain, (opts, &cache))
+                            };
+                            report.chains.extend(prose);
+                            scope.items.extend(rest.map(Item::Chain));
                         }
                     }
                 }
@@ -378,6 +390,7 @@ pub fn lint(name: &str, doc: &str, kind: DocKind, opts: &Options) -> LintReport 
         }
     }
     scopes.push(scope);
+    let lines = LineIndex::new(&cleaned);
     // Scopes share nothing but the reports of identical derivations: they are checked
     // in parallel.
     let checked = crate::files::parallel(&scopes, |s| {
@@ -465,7 +478,8 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         _ => None,
     };
     declare(names, defines.as_ref(), deriv, declared, (time, solve));
-    let text = |s: Span| doc.get(s.start..s.end).unwrap_or("");
+    // A link may run over several rows of a display: the derivation has it on one line.
+    let text = |s: Span| doc.get(s.start..s.end).unwrap_or("").replace(['\n', '\r'], " ");
     let last = chain.links.last().map_or(chain.first.span, |l| l.span);
     let chain_span = chain.first.span.to(last);
     let Some(link0) = chain.links.first() else {
@@ -474,7 +488,7 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
     let write = |kw: &str, pieces: &[Span], deriv: &mut String| -> Option<Part> {
         let mut stmt = format!("{kw} $$ ");
         for p in pieces {
-            stmt.push_str(text(*p));
+            stmt.push_str(&text(*p));
             stmt.push(' ');
         }
         stmt.push_str("$$\n");
@@ -543,6 +557,7 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
             let _ = write("given", &[prev.rhs.span, l.span], deriv);
         }
     }
+    let defined = first.is_none().then_some(defines).flatten();
     placed.push(Placed {
         first,
         rest,
@@ -552,6 +567,7 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         first_link: Span::new(link0.rhs.span.start, link0.span.end),
         states,
         firm,
+        defines: defined,
     });
 }
 
@@ -737,6 +753,7 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
             verdict: Verdict::Failed,
             diagnostics: first_diags,
             assuming: Vec::new(),
+            defines: None,
         };
     }
     // A verified chain says what its links assume (a division the signs do not show safe).
@@ -751,6 +768,7 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
         },
         verdict,
         diagnostics,
+        defines: p.defines.clone(),
     };
     if let Some((s, mut d)) = rest {
         if d.iter().any(refuted) {
@@ -776,7 +794,10 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
             }
         }
         first_diags.extend(d);
-    } else if first_ok || (p.first.is_none() && p.states) {
+    } else if p.first.is_none() && p.states {
+        // Only a definition, nothing checked.
+        return report(Verdict::Defined, Vec::new());
+    } else if first_ok {
         return report(Verdict::Verified, Vec::new());
     }
     // What the first link needs is context, not a mistake: notes state relations that
@@ -814,6 +835,7 @@ fn verified_tail(checked: &FileReport, p: &Placed) -> Option<ChainReport> {
         verdict: Verdict::Verified,
         diagnostics: Vec::new(),
         assuming: once(conditions(statuses.get(j + 1..).unwrap_or_default())),
+        defines: None,
     })
 }
 
@@ -862,6 +884,7 @@ fn verified_head(checked: &FileReport, p: &Placed) -> Option<(ChainReport, usize
         verdict: Verdict::Verified,
         diagnostics: Vec::new(),
         assuming: Vec::new(),
+        defines: None,
     };
     Some((head, from))
 }
@@ -937,11 +960,7 @@ fn read(
     prev: Option<&Expr>,
     popts: &ParseOptions,
 ) -> (Vec<ChainReport>, Option<Chain>) {
-    let lead = rel.trim_start();
-    let continues = lead.starts_with(['=', '<', '>'])
-        || ["\\approx", "\\le", "\\ge", "\\neq", "\\simeq"]
-            .iter()
-            .any(|r| lead.starts_with(r));
+    let continues = display::starts_with_relation(rel);
     let parsed = match (prev, continues) {
         (Some(prev), true) => parse_latex_links(rel, at, popts).map(|links| Chain {
             first: prev.clone(),
@@ -958,6 +977,7 @@ fn read(
         verdict: Verdict::NeedsContext,
         diagnostics: vec![Diagnostic::error(Code::Syntax, message, span, "")],
         assuming: Vec::new(),
+        defines: None,
     };
     let after = e.span.end.saturating_sub(at);
     match extract::equals_after(rel, after) {

@@ -10,6 +10,7 @@ fn word(v: &Verdict) -> &'static str {
         Verdict::Verified => "verified",
         Verdict::Failed => "failed",
         Verdict::NeedsContext => "needs context",
+        Verdict::Defined => "defined",
     }
 }
 
@@ -33,6 +34,12 @@ pub fn human(r: &LintReport) -> (String, String) {
                 r.path,
                 c.assuming.join(" and ")
             )),
+            // A definition is taken as the notes give it: said, never counted as checked.
+            Verdict::Defined => out.push_str(&format!(
+                "{}:{line}:{col}: defines {}\n",
+                r.path,
+                c.defines.as_deref().unwrap_or("a new symbol")
+            )),
             Verdict::NeedsContext => {
                 out.push_str(&format!("{}:{line}:{col}: needs context{why}\n", r.path))
             }
@@ -47,13 +54,14 @@ pub fn human(r: &LintReport) -> (String, String) {
     (out, err)
 }
 
-/// `chains: N, verified: V, failed: F, needs context: C`.
+/// `chains: N, verified: V, defined: D, failed: F, needs context: C`.
 pub fn summary(reports: &[LintReport]) -> String {
     let n: usize = reports.iter().map(|r| r.chains.len()).sum();
     let c = |v: Verdict| -> usize { reports.iter().map(|r| r.count(&v)).sum() };
     format!(
-        "chains: {n}, verified: {}, failed: {}, needs context: {}",
+        "chains: {n}, verified: {}, defined: {}, failed: {}, needs context: {}",
         c(Verdict::Verified),
+        c(Verdict::Defined),
         c(Verdict::Failed),
         c(Verdict::NeedsContext)
     )
@@ -77,13 +85,14 @@ pub fn json(r: &LintReport) -> String {
                 })
                 .collect();
             json!({"line": line, "column": column, "verdict": word(&c.verdict),
-                   "assuming": c.assuming, "diagnostics": diags})
+                   "assuming": c.assuming, "defines": c.defines, "diagnostics": diags})
         })
         .collect();
     json!({
         "path": r.path,
         "chains": chains,
         "verified": r.count(&Verdict::Verified),
+        "defined": r.count(&Verdict::Defined),
         "failed": r.count(&Verdict::Failed),
         "needs_context": r.count(&Verdict::NeedsContext),
     })
