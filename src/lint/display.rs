@@ -102,7 +102,10 @@ pub fn clean(text: &str) -> String {
         let inner = envs.last().is_some_and(Option::is_none);
         match bytes[k] {
             b'{' => {
-                if text[k + 1..].trim_start_matches([' ', '\t']).starts_with('}') {
+                if text[k + 1..]
+                    .trim_start_matches([' ', '\t'])
+                    .starts_with('}')
+                {
                     let e = k + 1 + text[k + 1..].find('}').unwrap_or(0);
                     blank(&mut out, k, e + 1);
                     k = e + 1;
@@ -260,9 +263,7 @@ fn joins(rows: Rows, before: &str, after: &str) -> bool {
             let prev = before.trim_end();
             starts_with_relation(next)
                 || next.starts_with(['+', '-'])
-                || ["\\cdot", "\\times"]
-                    .iter()
-                    .any(|o| next.starts_with(o))
+                || ["\\cdot", "\\times"].iter().any(|o| next.starts_with(o))
                 || prev.ends_with(['+', '-', '=', '('])
                 || prev.ends_with("\\cdot")
         }
@@ -354,7 +355,10 @@ mod tests {
             parts("\\begin{multline} u = a + b \\\\ c + d \\end{multline}"),
             ["u = a + b c + d"]
         );
-        assert_eq!(parts("u &= a + b \\\\ &\\quad + c"), ["u = a + b \\quad + c"]);
+        assert_eq!(
+            parts("u &= a + b \\\\ &\\quad + c"),
+            ["u = a + b \\quad + c"]
+        );
         // Two columns of an align are two chains.
         assert_eq!(parts("x &= 1 & y &= 2"), ["x = 1", "y = 2"]);
     }

@@ -2,7 +2,7 @@
 //! declare what they use. Markdown goes through a CommonMark parser (pulldown-cmark,
 //! with its math extension), so code blocks, inline code and `\$` are never math.
 
-use pulldown_cmark::{Event, Options, Parser, Tag};
+use pulldown_cmark::{CodeBlockKind, Event, Options, Parser, Tag, TagEnd};
 
 /// The kind of document.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -32,12 +32,14 @@ pub enum Piece {
     /// A heading: what the notes derive under one heading is one scope (its
     /// definitions and stated relations do not reach the next).
     Heading,
-    /// Display math: its text and the byte offset where it starts.
+    /// Math: its text and the byte offset where it starts.
     Math {
         /// The math between the delimiters.
         text: String,
         /// Where it starts in the document.
         start: usize,
+        /// Whether it is inline math in prose (`$a = b$`), not a display.
+        inline: bool,
     },
 }
 
@@ -54,37 +56,132 @@ fn directive(comment: &str) -> Option<String> {
     Some(rest.trim().to_string())
 }
 
+/// The pieces of a Markdown document: `$$…$$` and `$…$` math (pulldown-cmark's), MyST
+/// ```` ```{math} ```` fences and `` {math}`…` `` roles, and the `\[…\]`, `\(…\)` and
+/// `\begin{align}…` math that MathJax reads in the text; each with its offset, in
+/// document order.
 fn markdown(doc: &str) -> Vec<Piece> {
-    let mut out = Vec::new();
+    let mut out: Vec<(usize, Piece)> = Vec::new();
+    // What the parser already read as math, code or HTML: never scanned for `\[`.
+    let mut covered: Vec<std::ops::Range<usize>> = Vec::new();
+    // Inside a MyST math fence: where its text starts and ends so far.
+    let mut fence: Option<Option<(usize, usize)>> = None;
+    let mut role = false;
     let parser = Parser::new_ext(doc, Options::ENABLE_MATH).into_offset_iter();
     for (event, range) in parser {
+        let at = range.start;
+        let whole = doc.get(range.clone()).unwrap_or("");
+        let was_role = std::mem::take(&mut role);
         match event {
             Event::DisplayMath(text) => {
-                let whole = doc.get(range.clone()).unwrap_or("");
-                let start = range.start + whole.find(text.as_ref()).unwrap_or(0);
-                out.push(Piece::Math {
-                    text: text.to_string(),
-                    start,
-                });
+                let start = at + whole.find(text.as_ref()).unwrap_or(0);
+                out.push((at, math(text.to_string(), start, false)));
+                covered.push(range);
             }
-            Event::Start(Tag::Heading { .. }) => out.push(Piece::Heading),
-            Event::Start(Tag::Paragraph)
-                if numbered_heading(doc.get(range.clone()).unwrap_or("")) =>
-            {
-                out.push(Piece::Heading);
+            Event::InlineMath(text) => {
+                let start = at + whole.find(text.as_ref()).unwrap_or(0);
+                out.push((at, math(text.to_string(), start, true)));
+                covered.push(range);
+            }
+            Event::Start(Tag::CodeBlock(kind)) => {
+                fence = matches!(&kind, CodeBlockKind::Fenced(info)
+                    if info.trim_start().starts_with("{math}"))
+                .then_some(None);
+                covered.push(range);
+            }
+            // A MyST math block: its lines, as one display.
+            Event::Text(_) if fence.is_some() => {
+                let (from, _) = fence.flatten().unwrap_or((range.start, range.end));
+                fence = Some(Some((from, range.end)));
+            }
+            Event::End(TagEnd::CodeBlock) => {
+                if let Some(Some((from, to))) = fence.take() {
+                    out.push((from, math(myst_body(&doc[from..to]), from, false)));
+                }
+            }
+            Event::Text(t) => role = t.ends_with("{math}"),
+            Event::Code(text) => {
+                if was_role {
+                    let start = at + whole.find(text.as_ref()).unwrap_or(0);
+                    out.push((at, math(text.to_string(), start, true)));
+                }
+                covered.push(range);
+            }
+            Event::Start(Tag::Heading { .. }) => out.push((at, Piece::Heading)),
+            Event::Start(Tag::Paragraph) if numbered_heading(whole) => {
+                out.push((at, Piece::Heading));
             }
             Event::Html(h) | Event::InlineHtml(h) => {
+                covered.push(range);
                 let mut rest = h.as_ref();
                 while let Some(i) = rest.find("<!--") {
                     let after = &rest[i + 4..];
                     let Some(j) = after.find("-->") else { break };
                     if let Some(d) = directive(&after[..j]) {
-                        out.push(Piece::Directive(d));
+                        out.push((at, Piece::Directive(d)));
                     }
                     rest = &after[j + 3..];
                 }
             }
             _ => {}
+        }
+    }
+    out.extend(mathjax(doc, &covered));
+    // Stable: pieces at one offset keep the parser's order.
+    out.sort_by_key(|(at, _)| *at);
+    out.into_iter().map(|(_, p)| p).collect()
+}
+
+/// The body of a MyST math block with its option lines (`:label: eq-1`) blanked.
+fn myst_body(text: &str) -> String {
+    text.split_inclusive('\n')
+        .map(|l| {
+            let body = l.trim_end_matches(['\n', '\r']);
+            if body.trim_start().starts_with(':') {
+                " ".repeat(body.len()) + &l[body.len()..]
+            } else {
+                l.to_string()
+            }
+        })
+        .collect()
+}
+
+fn math(text: String, start: usize, inline: bool) -> Piece {
+    Piece::Math {
+        text,
+        start,
+        inline,
+    }
+}
+
+/// The math MathJax reads in Markdown text outside what the parser read as math, code
+/// or HTML: `\[…\]`, `\(…\)` and display environments written bare.
+fn mathjax(doc: &str, covered: &[std::ops::Range<usize>]) -> Vec<(usize, Piece)> {
+    let mut out = Vec::new();
+    let mut i = 0;
+    while let Some(k) = doc[i..].find('\\').map(|k| k + i) {
+        if let Some(r) = covered.iter().find(|r| r.contains(&k)) {
+            i = r.end.max(k + 1);
+            continue;
+        }
+        let rest = &doc[k..];
+        let open = [("\\[", "\\]"), ("\\(", "\\)")]
+            .into_iter()
+            .find(|(o, _)| rest.starts_with(o))
+            .map(|(o, c)| (o.len(), c.to_string(), 0))
+            .or_else(|| environment(rest).map(|close| (0, close.clone(), close.len())));
+        let escaped = k > 0 && doc.as_bytes()[k - 1] == b'\\';
+        match open {
+            Some((olen, close, keep)) if !escaped => {
+                let body = k + olen;
+                let Some(e) = doc[body..].find(&close) else {
+                    break;
+                };
+                let text = doc[body..body + e + keep].to_string();
+                out.push((k, math(text, body, rest.starts_with("\\("))));
+                i = body + e + close.len();
+            }
+            _ => i = k + 1,
         }
     }
     out
@@ -129,6 +226,14 @@ fn numbered_heading(paragraph: &str) -> bool {
         .iter()
         .any(|k| first.eq_ignore_ascii_case(k));
     keyword && words.next().is_some_and(numbered)
+}
+
+/// Where an inline `$…$` that starts `text` ends: the next `$` not escaped, before a
+/// blank line.
+fn inline_end(text: &str) -> Option<usize> {
+    let para = text.find("\n\n").unwrap_or(text.len());
+    let bytes = text.as_bytes();
+    (0..para).find(|&k| bytes[k] == b'$' && (k == 0 || bytes[k - 1] != b'\\'))
 }
 
 /// The environments whose content is display math (each also starred).
@@ -178,20 +283,29 @@ fn latex(doc: &str) -> Vec<Piece> {
         }
         // An environment is read whole, `\begin{…}` and `\end{…}` included: how its rows
         // go together depends on its name.
-        let open = [("\\[", "\\]"), ("$$", "$$")]
+        let escaped = i > 0 && bytes[i - 1] == b'\\';
+        let open = [("\\[", "\\]"), ("$$", "$$"), ("\\(", "\\)"), ("$", "$")]
             .into_iter()
-            .find(|(o, _)| rest.starts_with(o))
+            .find(|(o, _)| rest.starts_with(o) && !escaped)
             .map(|(o, c)| (o.len(), c.to_string(), 0))
             .or_else(|| environment(rest).map(|close| (0, close.clone(), close.len())));
+        if let Some((1, _, _)) = open {
+            // Inline `$…$`, within its paragraph, to the next `$` not escaped.
+            if let Some(e) = inline_end(&doc[i + 1..]) {
+                out.push(math(doc[i + 1..i + 1 + e].to_string(), i + 1, true));
+                i += e + 2;
+            } else {
+                i += 1;
+            }
+            continue;
+        }
         if let Some((olen, close, keep)) = open {
             let body_start = i + olen;
             let Some(k) = doc[body_start..].find(&close) else {
                 break;
             };
-            out.push(Piece::Math {
-                text: doc[body_start..body_start + k + keep].to_string(),
-                start: body_start,
-            });
+            let text = doc[body_start..body_start + k + keep].to_string();
+            out.push(math(text, body_start, olen == 2 && rest.starts_with("\\(")));
             i = body_start + k + close.len();
             continue;
         }

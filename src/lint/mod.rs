@@ -8,6 +8,7 @@ use crate::diag::{Code, Mistake};
 mod display;
 mod extract;
 mod mass;
+mod reader;
 
 use crate::check::{check_source, FileReport, MemoryResolver, Options, Status};
 use crate::diag::{Diagnostic, LineIndex};
@@ -104,6 +105,9 @@ struct Scope {
     names: HashSet<String>,
     /// The scope's own `rigor:` statements (with the names they declare) and chains.
     items: Vec<Item>,
+    /// Where the chains start that are statements of the prose (an inline relation of
+    /// one link): reported only when they hold, fail or define a symbol.
+    quiet: HashSet<usize>,
 }
 
 enum Item {
@@ -188,6 +192,7 @@ impl Scope {
             directives: directives.to_string(),
             names: names.clone(),
             items: Vec::new(),
+            quiet: HashSet::new(),
         }
     }
 
@@ -314,88 +319,20 @@ pub fn lint(name: &str, doc: &str, kind: DocKind, opts: &Options) -> LintReport 
         source: doc.to_string(),
         chains: Vec::new(),
     };
-    let mut directives = String::new();
-    let mut names: HashSet<String> = HashSet::new();
-    let mut cleaned = doc.to_string();
-    let mut scope = Scope::default();
-    let mut scopes: Vec<Scope> = Vec::new();
-    // The last expression of the previous chain: a display starting with `=` goes on.
-    let mut last: Option<Expr> = None;
-    let popts = ParseOptions {
-        max_depth: opts.parse.max_depth,
-    };
     let cache = Checked::default();
+    let mut reader = reader::Reader::new(doc, opts, &cache);
     for piece in pieces(doc, kind) {
-        match piece {
-            Piece::Heading => {
-                scopes.push(std::mem::replace(
-                    &mut scope,
-                    Scope::under(&directives, &names),
-                ));
-                last = None;
-            }
-            // `<!-- rigor: ## Sliding -->`: a heading the notes do not show.
-            Piece::Directive(text) if text.starts_with('#') => {
-                scopes.push(std::mem::replace(
-                    &mut scope,
-                    Scope::under(&directives, &names),
-                ));
-                last = None;
-            }
-            Piece::Directive(text) => {
-                if !cache.parses(&text) {
-                    continue;
-                }
-                let words: Vec<String> = text
-                    .split_whitespace()
-                    .map(|w| {
-                        w.trim_matches(|c: char| !c.is_alphanumeric() && c != '_')
-                            .to_string()
-                    })
-                    .collect();
-                names.extend(words.iter().cloned());
-                directives.push_str(&text);
-                directives.push('\n');
-                scope.items.push(Item::Directive(text, words));
-            }
-            Piece::Math { text, start } => {
-                // The display as the reader sees it, markup blanked, offsets kept; the
-                // derivation is made from the document with its displays so cleaned.
-                let text = display::clean(&text);
-                if doc.get(start..start + text.len()).is_some() {
-                    cleaned.replace_range(start..start + text.len(), &text);
-                }
-                for (rel, at) in extract::relations(&text) {
-                    let at = start + at;
-                    let (unread, parsed) = read(rel, at, last.as_ref(), &popts);
-                    report.chains.extend(unread);
-                    match parsed {
-                        None => last = None,
-                        Some(chain) => {
-                            last = chain.links.last().map(|l| l.rhs.clone());
-                            let body = directives
-                                .lines()
-                                .any(|l| l.trim_start().starts_with("body"));
-                            let (prose, rest) = if body {
-                                (Vec::new(), Some(chain))
-                            } else {
-                                mass::over_prose_mass(chain, (opts, &cache))
-                            };
-                            report.chains.extend(prose);
-                            scope.items.extend(rest.map(Item::Chain));
-                        }
-                    }
-                }
-            }
-        }
+        reader.piece(piece, &mut report.chains);
     }
-    scopes.push(scope);
+    let (scopes, cleaned) = reader.finish();
     let lines = LineIndex::new(&cleaned);
     // Scopes share nothing but the reports of identical derivations: they are checked
     // in parallel.
     let checked = crate::files::parallel(&scopes, |s| {
         let mut out = Vec::new();
         s.close((name, &lines), (opts, &cache), &mut out);
+        // A condition or value stated in a sentence (`$\mu = 0$`) is not a chain.
+        out.retain(|c| !(c.verdict == Verdict::NeedsContext && s.quiet.contains(&c.span.start)));
         out
     });
     report.chains.extend(checked.into_iter().flatten());
@@ -479,7 +416,11 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
     };
     declare(names, defines.as_ref(), deriv, declared, (time, solve));
     // A link may run over several rows of a display: the derivation has it on one line.
-    let text = |s: Span| doc.get(s.start..s.end).unwrap_or("").replace(['\n', '\r'], " ");
+    let text = |s: Span| {
+        doc.get(s.start..s.end)
+            .unwrap_or("")
+            .replace(['\n', '\r'], " ")
+    };
     let last = chain.links.last().map_or(chain.first.span, |l| l.span);
     let chain_span = chain.first.span.to(last);
     let Some(link0) = chain.links.first() else {
