@@ -46,7 +46,17 @@ const MATH_ENVS: [(&str, Rows); 12] = [
 const DROPPED_WITH_ARG: [&str; 4] = ["label", "tag", "tag*", "eqref"];
 
 /// Markup with no argument that carries no maths.
-const DROPPED: [&str; 3] = ["nonumber", "notag", "displaystyle"];
+const DROPPED: [&str; 9] = [
+    "nonumber",
+    "notag",
+    "displaystyle",
+    "Huge",
+    "huge",
+    "LARGE",
+    "Large",
+    "large",
+    "normalsize",
+];
 
 /// The environments named in `text`'s `\begin{…}`, each with its rows' kind; `None`
 /// for an environment that is not an equation's (`cases`, `pmatrix`, `array`).
@@ -261,9 +271,15 @@ fn joins(rows: Rows, before: &str, after: &str) -> bool {
                 next = r.trim_start_matches(|c: char| c.is_whitespace() || c == '&');
             }
             let prev = before.trim_end();
+            // A row that starts with an operator goes on with the expression before it
+            // when its operator comes after the alignment point (`& + c`) or it holds no
+            // relation of its own; `-F a &= I_G \ddot\theta` is an equation of its own.
+            let row = &after[..after.find("\\\\").unwrap_or(after.len())];
+            let operator = next.starts_with(['+', '-'])
+                || ["\\cdot", "\\times"].iter().any(|o| next.starts_with(o));
+            let after_amp = row.trim_start().starts_with('&');
             starts_with_relation(next)
-                || next.starts_with(['+', '-'])
-                || ["\\cdot", "\\times"].iter().any(|o| next.starts_with(o))
+                || (operator && (after_amp || !super::extract::has_relation(row)))
                 || prev.ends_with(['+', '-', '=', '('])
                 || prev.ends_with("\\cdot")
         }
@@ -349,6 +365,11 @@ mod tests {
         assert_eq!(
             parts("\\begin{gather} a = b \\\\ = c \\end{gather}"),
             ["a = b", "= c"]
+        );
+        // An equation whose left side starts with a minus sign is a row of its own.
+        assert_eq!(
+            parts("F &= m a \\\\ -F b &= I \\alpha"),
+            ["F = m a", "-F b = I \\alpha"]
         );
         // A multline is one equation; a row that starts with `+` goes on.
         assert_eq!(

@@ -318,8 +318,10 @@ fn latex(doc: &str) -> Vec<Piece> {
 /// in it. A display may hold several, set apart by [`super::display::SEP`], by
 /// `\quad`/`\qquad`, by a run of `~` between two relations, or joined by an arrow (`\rightarrow`,
 /// `\Rightarrow`, `\implies`); a part with no relation is a label (`\sum F_x`,
-/// `(5.1)`) and is left out, as is a label before a colon (`\sum M(A): …`).
-pub fn relations(line: &str) -> Vec<(&str, usize)> {
+/// `(5.1)`) and is left out, as is a label before a colon (`\sum M(A): …`). Each comes
+/// with whether an implication arrow follows it (`\Rightarrow`, `\implies`,
+/// `\therefore`, `\rightarrow`): then it is a premise of what follows.
+pub fn relations(line: &str) -> Vec<(&str, usize, bool)> {
     const BREAKS: [&str; 9] = [
         "qquad",
         "quad",
@@ -329,6 +331,14 @@ pub fn relations(line: &str) -> Vec<(&str, usize)> {
         "Longrightarrow",
         "implies",
         "iff",
+        "therefore",
+    ];
+    const ARROWS: [&str; 6] = [
+        "rightarrow",
+        "Rightarrow",
+        "longrightarrow",
+        "Longrightarrow",
+        "implies",
         "therefore",
     ];
     let mut parts = Vec::new();
@@ -341,14 +351,14 @@ pub fn relations(line: &str) -> Vec<(&str, usize)> {
             b'{' => depth += 1,
             b'}' => depth -= 1,
             super::display::SEP => {
-                parts.push((start, k));
+                parts.push((start, k, false));
                 start = k + 1;
             }
             // A run of `~` between two relations sets them apart; elsewhere it is a space.
             b'~' if depth == 0 => {
                 let run = line[k..].bytes().take_while(|b| *b == b'~').count();
                 if has_relation(&line[start..k]) && has_relation(&line[k + run..]) {
-                    parts.push((start, k));
+                    parts.push((start, k, false));
                     start = k + run;
                 }
                 k += run;
@@ -361,7 +371,7 @@ pub fn relations(line: &str) -> Vec<(&str, usize)> {
                     .count();
                 let name = &line[k + 1..k + 1 + name_len];
                 if depth == 0 && BREAKS.contains(&name) {
-                    parts.push((start, k));
+                    parts.push((start, k, ARROWS.contains(&name)));
                     start = k + 1 + name_len;
                 }
                 k += 1 + name_len.max(1);
@@ -371,9 +381,15 @@ pub fn relations(line: &str) -> Vec<(&str, usize)> {
         }
         k += 1;
     }
-    parts.push((start, line.len()));
-    let mut out = Vec::new();
-    for (a, b) in parts {
+    parts.push((start, line.len(), false));
+    let mut out: Vec<(&str, usize, bool)> = Vec::new();
+    for (a, b, arrow) in parts {
+        // An arrow after a relation, before the next one, makes it a premise.
+        if arrow {
+            if let Some(last) = out.last_mut() {
+                last.2 = true;
+            }
+        }
         let mut a = a;
         let part = &line[a..b];
         if let Some(colon) = top_level_colon(part) {
@@ -381,9 +397,11 @@ pub fn relations(line: &str) -> Vec<(&str, usize)> {
                 a += colon + 1;
             }
         }
+        // The relation starts at its first character, not at the spaces before it.
+        a += line[a..b].len() - line[a..b].trim_start().len();
         let text = &line[a..b];
         if has_relation(text) {
-            out.push((text, a));
+            out.push((text, a, false));
         }
     }
     out
@@ -404,7 +422,7 @@ fn top_level_colon(text: &str) -> Option<usize> {
 }
 
 /// Whether a piece of LaTeX math holds a relation outside braces.
-fn has_relation(text: &str) -> bool {
+pub(super) fn has_relation(text: &str) -> bool {
     const RELATIONS: [&str; 11] = [
         "approx",
         "simeq",
@@ -463,7 +481,10 @@ mod tests {
     use super::*;
 
     fn texts(line: &str) -> Vec<&str> {
-        relations(line).into_iter().map(|(t, _)| t.trim()).collect()
+        relations(line)
+            .into_iter()
+            .map(|(t, _, _)| t.trim())
+            .collect()
     }
 
     #[test]
@@ -486,7 +507,8 @@ mod tests {
         assert_eq!(texts(r"v = 3 \quad \text{(m/s)}"), ["v = 3"]);
         // Offsets point into the line.
         let line = r"x = 1 \implies y = 2";
-        let (t, at) = relations(line)[1];
+        let (t, at, _) = relations(line)[1];
+        assert!(relations(line)[0].2 && !relations(line)[1].2, "a premise");
         assert_eq!(&line[at..at + t.len()], t);
     }
 

@@ -8,6 +8,7 @@ use crate::diag::{Code, Mistake};
 mod display;
 mod extract;
 mod mass;
+mod premises;
 mod reader;
 
 use crate::check::{check_source, FileReport, MemoryResolver, Options, Status};
@@ -94,6 +95,10 @@ struct Placed {
     firm: bool,
     /// The new symbol the first link defines, if it does.
     defines: Option<String>,
+    /// Whether it is a premise the notes impose (written before an implication arrow).
+    imposed: bool,
+    /// Its approximations that may not fail (`premises::loose_approximations`).
+    loose: Vec<Span>,
 }
 
 /// What the notes derive under one heading.
@@ -113,6 +118,8 @@ struct Scope {
 enum Item {
     Directive(String, Vec<String>),
     Chain(Chain),
+    /// A chain written before an implication arrow: a premise the notes impose.
+    Imposed(Chain),
 }
 
 /// The reports of the derivations checked so far in one run, by their text, and
@@ -183,6 +190,8 @@ struct Build<'a> {
     solve: &'a HashSet<String>,
     /// What this run has read and checked.
     cache: &'a Checked,
+    /// Whether the chain being placed is a premise the notes impose.
+    imposing: bool,
 }
 
 impl Scope {
@@ -212,6 +221,7 @@ impl Scope {
             time,
             solve,
             cache,
+            imposing: false,
         };
         for item in &self.items {
             match item {
@@ -222,6 +232,11 @@ impl Scope {
                     b.known.extend(names.iter().cloned());
                 }
                 Item::Chain(chain) => place(chain, doc, &mut b),
+                Item::Imposed(chain) => {
+                    b.imposing = true;
+                    place(chain, doc, &mut b);
+                    b.imposing = false;
+                }
             }
         }
         b
@@ -240,7 +255,7 @@ impl Scope {
     ) {
         let mut time = HashSet::new();
         for item in &self.items {
-            if let Item::Chain(c) = item {
+            if let Item::Chain(c) | Item::Imposed(c) = item {
                 let mut names = Vec::new();
                 free(&c.first, &mut Vec::new(), &mut names);
                 for l in &c.links {
@@ -401,10 +416,12 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         time,
         solve,
         cache,
+        imposing,
     } = b;
     let mut names = first_link_names(chain);
     let is_known = |n: &String| known.contains(n.trim_end_matches('\'')) || n == "t";
-    let firm = names.iter().all(is_known);
+    let firm = !*imposing && names.iter().all(is_known);
+    let loose = premises::loose_approximations(chain, deriv);
     let constraint = is_constraint(&names, time);
     let later = later_links(chain, &mut names, seen, &is_known);
     seen.extend(names.iter().map(|n| n.trim_end_matches('\'').to_string()));
@@ -509,6 +526,8 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         states,
         firm,
         defines: defined,
+        imposed: *imposing,
+        loose,
     });
 }
 
@@ -683,11 +702,13 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
         Some(part) => part_outcome(checked, part, p.span),
         None => (Vec::new(), Vec::new()),
     };
+    premises::loosen(&mut first_diags, &p.loose);
     let first_ok = p.first.is_none() || holds(&first_statuses);
-    let rest = p
-        .rest
-        .as_ref()
-        .map(|part| part_outcome(checked, part, p.span));
+    let rest = p.rest.as_ref().map(|part| {
+        let (s, mut d) = part_outcome(checked, part, p.span);
+        premises::loosen(&mut d, &p.loose);
+        (s, d)
+    });
     if p.firm && !p.states && first_diags.iter().any(refuted) {
         return ChainReport {
             span: p.span,
@@ -747,7 +768,11 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
         if refuted(d) {
             d.code = Code::NotVerified;
             d.mistake = None;
-            d.message = "needs context: this relation does not hold for every value of its symbols; the document must define or give it".into();
+            d.message = if p.imposed {
+                premises::IMPOSED.into()
+            } else {
+                "needs context: this relation does not hold for every value of its symbols; the document must define or give it".into()
+            };
         }
     }
     if first_diags.is_empty() {

@@ -148,7 +148,7 @@ impl<'a> Reader<'a> {
                 self.directive(format!("small {name}"));
             }
         }
-        for (rel, at) in extract::relations(&text) {
+        for (rel, at, premise) in extract::relations(&text) {
             let at = start + at;
             let prev = if inline { None } else { self.last.as_ref() };
             let (unread, parsed) = read(rel, at, prev, &self.popts);
@@ -182,6 +182,12 @@ impl<'a> Reader<'a> {
                         .filter(|c| c.verdict != Verdict::NeedsContext),
                 );
                 if let Some(c) = &rest {
+                    // `$\mu = 0$`, `$h = 2$`: a case or a value the sentence sets.
+                    let value = matches!(c.first.kind, ExprKind::Sym(_))
+                        && c.links.iter().all(|l| !has_symbols(&l.rhs));
+                    if c.links.len() == 1 && value {
+                        continue;
+                    }
                     if c.links.len() == 1 {
                         self.prose.quiet.insert(c.first.span.start);
                     }
@@ -189,7 +195,8 @@ impl<'a> Reader<'a> {
                 self.prose.items.extend(rest.map(Item::Chain));
             } else {
                 out.extend(prose);
-                self.scope.items.extend(rest.map(Item::Chain));
+                let item = if premise { Item::Imposed } else { Item::Chain };
+                self.scope.items.extend(rest.map(item));
             }
         }
     }
@@ -205,7 +212,7 @@ impl<'a> Reader<'a> {
         };
         // Only a number for a number: two symbolic values are usually two true relations
         // (`\ddot x = -\ddot\theta R`, then the result for `\ddot x`).
-        if self.names.contains(n) || link.rhs.any(&|e| matches!(e.kind, ExprKind::Sym(_))) {
+        if self.names.contains(n) || has_symbols(&link.rhs) {
             return;
         }
         let value = source(&link.rhs);
@@ -214,6 +221,10 @@ impl<'a> Reader<'a> {
         }
         self.values.insert(n.clone(), value);
     }
+}
+
+fn has_symbols(e: &Expr) -> bool {
+    e.any(&|n| matches!(n.kind, ExprKind::Sym(_)))
 }
 
 /// The symbols an author declares small in the maths itself: `\theta \ll 1`.

@@ -19,7 +19,12 @@ pub fn human(r: &LintReport) -> (String, String) {
     let (mut out, mut err) = (String::new(), String::new());
     let idx = LineIndex::new(&r.source);
     for c in &r.chains {
-        let (line, col) = idx.line_col(c.span.start);
+        // A failed chain is reported where its mistake is (a chain may run over rows).
+        let at = match c.verdict {
+            Verdict::Failed => c.diagnostics.first().and_then(|d| d.primary.as_ref()),
+            _ => None,
+        };
+        let (line, col) = idx.line_col(at.map_or(c.span.start, |(s, _)| s.start));
         let why = c.diagnostics.first().map_or(String::new(), |d| {
             let m = d.message.as_str();
             format!(": {}", m.strip_prefix("needs context: ").unwrap_or(m))

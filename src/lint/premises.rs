@@ -1,0 +1,67 @@
+//! What a chain's links may be held to. An approximation (`\approx`) is checked to
+//! first order in the small quantities in scope (`\sin\theta \approx \theta` under
+//! `small theta`), or at the precision written when both sides are numbers
+//! (`\frac13 \approx 0.33`); any other (`\tan\phi \approx \phi` with nothing declared
+//! small, `T \approx 6.28` with `T` given in prose) is an approximation whose reason
+//! the notes give in prose: it needs context and never fails. A relation written
+//! before an implication arrow (`m h = 2 \Rightarrow 2 m h = 4`) is a premise the notes
+//! impose, not a step: it needs context when it does not hold on its own, and what
+//! follows the arrow is checked with it.
+
+use crate::diag::{Code, Diagnostic};
+use crate::syntax::ast::{Chain, Expr, ExprKind, RelOp, Span};
+
+/// The names a derivation declares small (`small theta phi to order 2`).
+fn small_names(deriv: &str) -> Vec<&str> {
+    deriv
+        .lines()
+        .filter_map(|l| l.trim_start().strip_prefix("small "))
+        .flat_map(|rest| rest.split_whitespace().take_while(|w| *w != "to"))
+        .collect()
+}
+
+/// Whether `e` names one of `names` (or a time derivative of one).
+fn mentions(e: &Expr, names: &[&str]) -> bool {
+    e.any(&|n| matches!(&n.kind, ExprKind::Sym(s) if names.contains(&s.trim_end_matches('\''))))
+}
+
+fn has_symbols(e: &Expr) -> bool {
+    e.any(&|n| matches!(n.kind, ExprKind::Sym(_)))
+}
+
+/// The links of `chain` (their spans in the document, from the left side to the end of
+/// the right side) that are approximations rigor may not fail: neither numbers on both
+/// sides nor about a quantity `deriv` declares small.
+pub(super) fn loose_approximations(chain: &Chain, deriv: &str) -> Vec<Span> {
+    let small = small_names(deriv);
+    let mut out = Vec::new();
+    let mut lhs = &chain.first;
+    for l in &chain.links {
+        if l.op == RelOp::Approx {
+            let numbers = !has_symbols(lhs) && !has_symbols(&l.rhs);
+            let in_series = mentions(lhs, &small) || mentions(&l.rhs, &small);
+            if !numbers && !in_series {
+                out.push(lhs.span.to(l.span));
+            }
+        }
+        lhs = &l.rhs;
+    }
+    out
+}
+
+/// Diagnostics about loose approximations (see [`loose_approximations`]) say what the
+/// link needs instead of failing it.
+pub(super) fn loosen(diags: &mut [Diagnostic], loose: &[Span]) {
+    for d in diags {
+        let at = d.primary.as_ref().map(|(s, _)| s.start);
+        let inside = at.is_some_and(|a| loose.iter().any(|s| a >= s.start && a < s.end));
+        if d.code == Code::Approximation && inside {
+            d.code = Code::NotVerified;
+            d.mistake = None;
+            d.message = "needs context: an approximation that is neither between numbers nor in a quantity declared small; the notes must say what is small (`<!-- rigor: small theta -->`, or `\\theta \\ll 1` in the text) or give the values".into();
+        }
+    }
+}
+
+/// The message of a premise the notes impose that does not hold on its own.
+pub(super) const IMPOSED: &str = "needs context: the notes impose this relation (it comes before an implication arrow); what follows the arrow is checked with it";
