@@ -99,6 +99,9 @@ struct Placed {
     imposed: bool,
     /// Its approximations that may not fail (`premises::loose_approximations`).
     loose: Vec<Span>,
+    /// Whether a part of it could not be written into the derivation (then it is not
+    /// checked).
+    unwritten: bool,
 }
 
 /// What the notes derive under one heading.
@@ -480,13 +483,15 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
                 text(chain.first.span),
                 text(link0.rhs.span)
             );
-            if !cache.parses(&stmt) {
+            if cache.parses(&stmt) {
+                stated = Some(vec![(deriv.len() + 7, chain.first.span.start, 0)]);
+                deriv.push_str(&stmt);
+                (None, true)
+            } else {
                 declared.remove(s);
-                return;
+                stated = None;
+                (None, false)
             }
-            stated = Some(vec![(deriv.len() + 7, chain.first.span.start, 0)]);
-            deriv.push_str(&stmt);
-            (None, true)
         }
         None => {
             // Checked as a claim; then, holding or not, taken as what the notes state —
@@ -503,6 +508,9 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         }
     };
     let rest = rest_span.and_then(|r| write("claim", &[link0.rhs.span, r], deriv));
+    // A part that does not read as rigor's own statement is not checked: the chain
+    // needs context, never verified by what was left out.
+    let unwritten = (first.is_none() && !states) || (rest_span.is_some() && rest.is_none());
     // Then each later link is taken as stated too, as the first is: one that does not
     // follow states something new (`m y'' = 0`), which later chains may use.
     for ((prev, l), later) in chain
@@ -515,7 +523,7 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
             let _ = write("given", &[prev.rhs.span, l.span], deriv);
         }
     }
-    let defined = first.is_none().then_some(defines).flatten();
+    let defined = (first.is_none() && states).then_some(defines).flatten();
     placed.push(Placed {
         first,
         rest,
@@ -528,6 +536,7 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         defines: defined,
         imposed: *imposing,
         loose,
+        unwritten,
     });
 }
 
@@ -697,6 +706,20 @@ fn refuted(d: &Diagnostic) -> bool {
 /// The verdict on a placed chain: its later links must follow (else it failed); its
 /// first link must hold on its own, or state a relation for a lone symbol.
 fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
+    if p.unwritten {
+        return ChainReport {
+            span: p.span,
+            verdict: Verdict::NeedsContext,
+            diagnostics: vec![Diagnostic::error(
+                Code::NotVerified,
+                "needs context: rigor reads this chain but cannot write it as a derivation, so it is not checked",
+                p.span,
+                "",
+            )],
+            assuming: Vec::new(),
+            defines: None,
+        };
+    }
     let holds = |s: &[Status]| !s.is_empty() && s.iter().all(Status::is_verified);
     let (first_statuses, mut first_diags) = match &p.first {
         Some(part) => part_outcome(checked, part, p.span),

@@ -766,7 +766,8 @@ impl P {
                 )
             })?,
         };
-        let span = f.span.to(hi.span);
+        // To the last token read: the closing brace of `^{L}` too.
+        let span = f.span.to(self.last_span());
         let v = node(ExprKind::Sym(var), lo.span);
         Ok(node(ExprKind::Call(Func::Eval, vec![f, v, lo, hi]), span))
     }
