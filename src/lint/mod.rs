@@ -429,7 +429,13 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
     let later = later_links(chain, &mut names, seen, &is_known);
     seen.extend(names.iter().map(|n| n.trim_end_matches('\'').to_string()));
     let defines = match &chain.first.kind {
-        ExprKind::Sym(n) if !declared.contains(n.trim_end_matches('\'')) && !n.ends_with('\'') => {
+        // A symbol written with a derivative elsewhere is a function of time: a relation
+        // for it is a constraint or a law, never a `let`.
+        ExprKind::Sym(n)
+            if !declared.contains(n.trim_end_matches('\''))
+                && !n.ends_with('\'')
+                && !time.contains(n) =>
+        {
             Some(n.clone())
         }
         _ => None,

@@ -188,6 +188,17 @@ impl<'a> Reader<'a> {
                     if c.links.len() == 1 && value {
                         continue;
                     }
+                    // `$x = -\theta R$`, `$I_G = \frac12 m R^2$`: what a sentence says a
+                    // symbol stands for, the displays after it may use (stated, never a
+                    // step: with a lone symbol on the left it cannot fail).
+                    let defining = matches!(c.first.kind, ExprKind::Sym(_))
+                        && c.links.len() == 1
+                        && c.links[0].op == RelOp::Eq;
+                    if defining {
+                        self.scope.quiet.insert(c.first.span.start);
+                        self.scope.items.extend(rest.map(Item::Chain));
+                        continue;
+                    }
                     if c.links.len() == 1 {
                         self.prose.quiet.insert(c.first.span.start);
                     }
