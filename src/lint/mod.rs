@@ -14,7 +14,6 @@ mod reader;
 use crate::check::{check_source, FileReport, MemoryResolver, Options, Status};
 use crate::diag::{Diagnostic, LineIndex};
 use crate::syntax::ast::{Chain, Expr, ExprKind, Func, Reading, Span};
-use crate::syntax::latex::{parse_latex_chain, parse_latex_links};
 use crate::syntax::ParseOptions;
 pub use extract::{pieces, DocKind, Piece};
 use std::collections::{HashMap, HashSet};
@@ -102,6 +101,8 @@ struct Placed {
     /// Whether a part of it could not be written into the derivation (then it is not
     /// checked).
     unwritten: bool,
+    /// The names of its symbols.
+    symbols: Vec<String>,
 }
 
 /// What the notes derive under one heading.
@@ -292,8 +293,19 @@ impl Scope {
                 .filter(|n| !b.known.contains(n) && !solve.contains(n))
                 .collect();
             if more.is_empty() || round == 2 {
+                // A failure that positive values of the symbols the linter declared
+                // would remove is a sign the notes do not state, not a slip.
+                let positive = b
+                    .placed
+                    .iter()
+                    .any(|p| verdict(&checked, p).verdict == Verdict::Failed)
+                    .then(|| premises::positive(&b.deriv))
+                    .map(|(deriv, names)| (cache.report(name, &deriv, opts), names));
                 for p in &b.placed {
                     let mut report = verdict(&checked, p);
+                    if let Some((again, names)) = &positive {
+                        premises::unsigned(&mut report, verdict(again, p), (&p.symbols, names));
+                    }
                     for d in &mut report.diagnostics {
                         d.message = document_lines(&d.message, &b.deriv, &b.placed, doc);
                     }
@@ -428,48 +440,17 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
     let constraint = is_constraint(&names, time);
     let later = later_links(chain, &mut names, seen, &is_known);
     seen.extend(names.iter().map(|n| n.trim_end_matches('\'').to_string()));
-    let defines = match &chain.first.kind {
-        // A symbol written with a derivative elsewhere is a function of time: a relation
-        // for it is a constraint or a law, never a `let`.
-        ExprKind::Sym(n)
-            if !declared.contains(n.trim_end_matches('\''))
-                && !n.ends_with('\'')
-                && !time.contains(n) =>
-        {
-            Some(n.clone())
-        }
-        _ => None,
-    };
+    let chain_names = names.clone();
+    let defines = new_symbol(chain, declared, time);
     declare(names, defines.as_ref(), deriv, declared, (time, solve));
-    // A link may run over several rows of a display: the derivation has it on one line.
-    let text = |s: Span| {
-        doc.get(s.start..s.end)
-            .unwrap_or("")
-            .replace(['\n', '\r'], " ")
-    };
+    let text = |s: Span| flat(doc, s);
     let last = chain.links.last().map_or(chain.first.span, |l| l.span);
     let chain_span = chain.first.span.to(last);
     let Some(link0) = chain.links.first() else {
         return;
     };
-    let write = |kw: &str, pieces: &[Span], deriv: &mut String| -> Option<Part> {
-        let mut stmt = format!("{kw} $$ ");
-        for p in pieces {
-            stmt.push_str(&text(*p));
-            stmt.push(' ');
-        }
-        stmt.push_str("$$\n");
-        if !cache.parses(&stmt) {
-            return None;
-        }
-        let mut part = Vec::new();
-        let mut at = deriv.len() + kw.len() + 4;
-        for p in pieces {
-            part.push((at, p.start, p.end - p.start));
-            at += p.end - p.start + 1;
-        }
-        deriv.push_str(&stmt);
-        Some(part)
+    let write = |kw: &str, pieces: &[Span], deriv: &mut String| {
+        write_statement(kw, pieces, (doc, cache), deriv)
     };
     let rest_span = chain
         .links
@@ -543,7 +524,59 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         imposed: *imposing,
         loose,
         unwritten,
+        symbols: chain_names,
     });
+}
+
+/// The text of `s` in the document on one line: a link may run over several rows of a
+/// display.
+fn flat(doc: &str, s: Span) -> String {
+    doc.get(s.start..s.end)
+        .unwrap_or("")
+        .replace(['\n', '\r'], " ")
+}
+
+/// Writes `kw $$ pieces $$` into the derivation when it reads, and where each piece
+/// came from.
+fn write_statement(
+    kw: &str,
+    pieces: &[Span],
+    (doc, cache): (&str, &Checked),
+    deriv: &mut String,
+) -> Option<Part> {
+    let mut stmt = format!("{kw} $$ ");
+    for p in pieces {
+        stmt.push_str(&flat(doc, *p));
+        stmt.push(' ');
+    }
+    stmt.push_str("$$\n");
+    if !cache.parses(&stmt) {
+        return None;
+    }
+    let mut part = Vec::new();
+    let mut at = deriv.len() + kw.len() + 4;
+    for p in pieces {
+        part.push((at, p.start, p.end - p.start));
+        at += p.end - p.start + 1;
+    }
+    deriv.push_str(&stmt);
+    Some(part)
+}
+
+/// The lone new symbol a chain's first link defines: not declared, not a derivative,
+/// and not written with a derivative elsewhere (a function of time: a relation for it
+/// is a constraint or a law, never a `let`).
+fn new_symbol(chain: &Chain, declared: &HashSet<String>, time: &HashSet<String>) -> Option<String> {
+    match &chain.first.kind {
+        ExprKind::Sym(n)
+            if !declared.contains(n.trim_end_matches('\''))
+                && !n.ends_with('\'')
+                && !time.contains(n) =>
+        {
+            Some(n.clone())
+        }
+        _ => None,
+    }
 }
 
 /// The free names of a chain's first link.
@@ -596,7 +629,9 @@ fn declare(
     }
     for (kw, list) in kinds {
         if !list.is_empty() {
-            deriv.push_str(&format!("{kw} {}\n", list.join(" ")));
+            // Room for ` > 0` (`premises::positive`), so offsets stay as they are.
+            let room = if kw == "symbols" { premises::ROOM } else { "" };
+            deriv.push_str(&format!("{kw} {}{room}\n", list.join(" ")));
         }
     }
 }
@@ -943,45 +978,4 @@ fn later_links(
         });
     }
     later
-}
-
-/// Reads one relation of a display (`prev`: the last expression before it, which a
-/// relation that starts with `=` goes on from). What cannot be read is reported as
-/// needing context; after a mass element with limits (`\int_0^R r^2\,dm`), the part
-/// from the next `=` on is read on its own.
-fn read(
-    rel: &str,
-    at: usize,
-    prev: Option<&Expr>,
-    popts: &ParseOptions,
-) -> (Vec<ChainReport>, Option<Chain>) {
-    let continues = display::starts_with_relation(rel);
-    let parsed = match (prev, continues) {
-        (Some(prev), true) => parse_latex_links(rel, at, popts).map(|links| Chain {
-            first: prev.clone(),
-            links,
-        }),
-        _ => parse_latex_chain(rel, at, popts),
-    };
-    let e = match parsed {
-        Ok(chain) => return (Vec::new(), Some(chain)),
-        Err(e) => e,
-    };
-    let unread = |span: Span, message: String| ChainReport {
-        span,
-        verdict: Verdict::NeedsContext,
-        diagnostics: vec![Diagnostic::error(Code::Syntax, message, span, "")],
-        assuming: Vec::new(),
-        defines: None,
-    };
-    let after = e.span.end.saturating_sub(at);
-    match extract::equals_after(rel, after) {
-        Some(eq) if e.kind == crate::syntax::error::SyntaxErrorKind::MassElementWithLimits => {
-            let mut out = vec![unread(Span::new(at, at + eq), e.message)];
-            let (more, chain) = read(&rel[eq + 1..], at + eq + 1, None, popts);
-            out.extend(more);
-            (out, chain)
-        }
-        _ => (vec![unread(e.span, e.message)], None),
-    }
 }

@@ -6,8 +6,11 @@
 //! the notes give in prose: it needs context and never fails. A relation written
 //! before an implication arrow (`m h = 2 \Rightarrow 2 m h = 4`) is a premise the notes
 //! impose, not a step: it needs context when it does not hold on its own, and what
-//! follows the arrow is checked with it.
+//! follows the arrow is checked with it. And a chain that fails only because a symbol
+//! the notes never declared might be negative (`\sqrt{R^2/2} = R/\sqrt{2}`) needs the
+//! sign, which the report names as the `rigor:` comment that makes it checkable.
 
+use super::{ChainReport, Verdict};
 use crate::diag::{Code, Diagnostic};
 use crate::syntax::ast::{Chain, Expr, ExprKind, RelOp, Span};
 
@@ -65,3 +68,61 @@ pub(super) fn loosen(diags: &mut [Diagnostic], loose: &[Span]) {
 
 /// The message of a premise the notes impose that does not hold on its own.
 pub(super) const IMPOSED: &str = "needs context: the notes impose this relation (it comes before an implication arrow); what follows the arrow is checked with it";
+
+/// The room left after the symbols the linter declares, for ` > 0`.
+pub(super) const ROOM: &str = "    ";
+
+/// The derivation with every symbol the linter declared (on a line ending in [`ROOM`])
+/// declared positive instead, offsets unchanged, and those names.
+pub(super) fn positive(deriv: &str) -> (String, Vec<String>) {
+    let mut names = Vec::new();
+    let text = deriv
+        .split_inclusive('\n')
+        .map(|l| match l.strip_suffix(&format!("{ROOM}\n")) {
+            Some(decl) if decl.starts_with("symbols ") => {
+                names.extend(
+                    decl["symbols ".len()..]
+                        .split_whitespace()
+                        .map(String::from),
+                );
+                format!("{decl} > 0\n")
+            }
+            _ => l.to_string(),
+        })
+        .collect();
+    (text, names)
+}
+
+/// A failed chain that does not fail with the linter's symbols positive needs their
+/// sign: its report says which, and the comment that gives it.
+pub(super) fn unsigned(
+    report: &mut ChainReport,
+    again: ChainReport,
+    (own, positive): (&[String], &[String]),
+) {
+    if report.verdict != Verdict::Failed || again.verdict == Verdict::Failed {
+        return;
+    }
+    let mut names: Vec<&str> = own
+        .iter()
+        .map(|n| n.trim_end_matches('\''))
+        .filter(|n| positive.iter().any(|p| p == n))
+        .collect();
+    names.dedup();
+    let at = report
+        .diagnostics
+        .first()
+        .and_then(|d| d.primary.as_ref())
+        .map_or(report.span, |(s, _)| *s);
+    report.verdict = Verdict::NeedsContext;
+    report.diagnostics = vec![Diagnostic::error(
+        Code::NotVerified,
+        format!(
+            "needs context: this holds where {} > 0, which the notes do not declare; `rigor: symbols {} > 0` in a comment makes it checkable",
+            names.join(", "),
+            names.join(" ")
+        ),
+        at,
+        "",
+    )];
+}

@@ -10,10 +10,11 @@
 //! `a = 1`) starts a fresh scope, as the author's reuse of the letter means. An author's `\theta \ll 1` declares `theta`
 //! small, as `<!-- rigor: small theta -->` does.
 
-use super::{display, extract, mass, read, ChainReport, Checked, Item, Piece, Scope, Verdict};
+use super::{display, extract, mass, ChainReport, Checked, Item, Piece, Scope, Verdict};
 use crate::check::Options;
-use crate::syntax::ast::{Expr, ExprKind, RelOp};
-use crate::syntax::latex::parse_latex_expr;
+use crate::diag::{Code, Diagnostic};
+use crate::syntax::ast::{Chain, Expr, ExprKind, RelOp, Span};
+use crate::syntax::latex::{parse_latex_chain, parse_latex_expr, parse_latex_links};
 use crate::syntax::print::source;
 use crate::syntax::ParseOptions;
 use std::collections::{HashMap, HashSet};
@@ -214,7 +215,7 @@ impl<'a> Reader<'a> {
 
     /// A lone symbol given a value different from the one it was given before under
     /// this heading is the letter reused: the chains after it are a scope of their own.
-    fn redefinition(&mut self, chain: &crate::syntax::ast::Chain) {
+    fn redefinition(&mut self, chain: &Chain) {
         let ExprKind::Sym(n) = &chain.first.kind else {
             return;
         };
@@ -231,6 +232,47 @@ impl<'a> Reader<'a> {
             self.fresh_scope();
         }
         self.values.insert(n.clone(), value);
+    }
+}
+
+/// Reads one relation of a display (`prev`: the last expression before it, which a
+/// relation that starts with `=` goes on from). What cannot be read is reported as
+/// needing context; after a mass element with limits (`\int_0^R r^2\,dm`), the part
+/// from the next `=` on is read on its own.
+fn read(
+    rel: &str,
+    at: usize,
+    prev: Option<&Expr>,
+    popts: &ParseOptions,
+) -> (Vec<ChainReport>, Option<Chain>) {
+    let continues = display::starts_with_relation(rel);
+    let parsed = match (prev, continues) {
+        (Some(prev), true) => parse_latex_links(rel, at, popts).map(|links| Chain {
+            first: prev.clone(),
+            links,
+        }),
+        _ => parse_latex_chain(rel, at, popts),
+    };
+    let e = match parsed {
+        Ok(chain) => return (Vec::new(), Some(chain)),
+        Err(e) => e,
+    };
+    let unread = |span: Span, message: String| ChainReport {
+        span,
+        verdict: Verdict::NeedsContext,
+        diagnostics: vec![Diagnostic::error(Code::Syntax, message, span, "")],
+        assuming: Vec::new(),
+        defines: None,
+    };
+    let after = e.span.end.saturating_sub(at);
+    match extract::equals_after(rel, after) {
+        Some(eq) if e.kind == crate::syntax::error::SyntaxErrorKind::MassElementWithLimits => {
+            let mut out = vec![unread(Span::new(at, at + eq), e.message)];
+            let (more, chain) = read(&rel[eq + 1..], at + eq + 1, None, popts);
+            out.extend(more);
+            (out, chain)
+        }
+        _ => (vec![unread(e.span, e.message)], None),
     }
 }
 

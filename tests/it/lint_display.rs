@@ -193,3 +193,60 @@ fn a_wrong_centroidal_value_is_a_definition_never_verified() {
         "{out}"
     );
 }
+
+/// The notes of `tests/lint/corpus/`: our own notes in the forms public lecture notes
+/// use (LaTeX chapters, Markdown summaries, MyST, MathJax `\[ \]`), none written for
+/// rigor (no `rigor:` comment), with six slips planted.
+const CORPUS: [&str; 5] = [
+    "tests/lint/corpus/impact.tex",
+    "tests/lint/corpus/inertia.md",
+    "tests/lint/corpus/kinetics.md",
+    "tests/lint/corpus/pendulum.tex",
+    "tests/lint/corpus/rolling_myst.md",
+];
+
+#[test]
+fn the_corpus_of_notes_fails_only_its_slips_and_needs_context_for_at_most_two_in_five() {
+    let (mut chains, mut needs) = (0, 0);
+    let mut failed = Vec::new();
+    for note in CORPUS {
+        let (got, summary, text, _) = verdicts(note);
+        chains += got.len();
+        needs += got.iter().filter(|v| v.ends_with("needs context")).count();
+        failed.extend(
+            got.iter()
+                .filter(|v| v.ends_with("FAILED"))
+                .map(|v| format!("{note}:{}", v.split(':').next().unwrap_or_default())),
+        );
+        assert!(
+            summary.starts_with(&format!("chains: {}", got.len())),
+            "{text}"
+        );
+    }
+    // Every failure is a planted slip, on its line: an inverted restitution power, the
+    // plate's corner distance, a radius of gyration without its root, the disk's
+    // pendulum frequency inverted, the disk's rolling acceleration.
+    assert_eq!(
+        failed,
+        [
+            "tests/lint/corpus/impact.tex:43",
+            "tests/lint/corpus/inertia.md:50",
+            "tests/lint/corpus/inertia.md:64",
+            "tests/lint/corpus/pendulum.tex:45",
+            "tests/lint/corpus/rolling_myst.md:54",
+        ]
+    );
+    // The sixth slip (R_A = mg/2 for mg/4) is not shown false: the stated angular
+    // acceleration ties g, and rigor does not refute what the facts may allow.
+    let (got, _, text, _) = verdicts("tests/lint/corpus/kinetics.md");
+    assert!(got.contains(&"41:4 needs context".to_string()), "{text}");
+    // `\sqrt{R^2/2} = R/\sqrt{2}` holds for R > 0, which the notes never say: it needs
+    // that sign, and the report gives the comment that declares it.
+    let (out, _, _) = lint(&["tests/lint/corpus/inertia.md"]);
+    assert!(
+        out.contains("inertia.md:58:1: needs context: this holds where R > 0, which the notes do not declare; `rigor: symbols R > 0` in a comment makes it checkable"),
+        "{out}"
+    );
+    assert_eq!(chains, 58);
+    assert!(needs * 5 <= chains * 2, "{needs} of {chains} need context");
+}
