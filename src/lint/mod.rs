@@ -10,12 +10,14 @@ mod extract;
 mod mass;
 mod premises;
 mod reader;
+mod reason;
 
 use crate::check::{check_source, FileReport, MemoryResolver, Options, Status};
 use crate::diag::{Diagnostic, LineIndex};
 use crate::syntax::ast::{Chain, Expr, ExprKind, Func, Reading, Span};
 use crate::syntax::ParseOptions;
 pub use extract::{pieces, DocKind, Piece};
+pub use reason::Reason;
 use std::collections::{HashMap, HashSet};
 use std::sync::{Arc, Mutex};
 
@@ -47,6 +49,10 @@ pub struct ChainReport {
     pub assuming: Vec<String>,
     /// The new symbol a chain's first link defines (`I_G`), as rigor names it.
     pub defines: Option<String>,
+    /// For a chain that needs context: why.
+    pub reason: Option<Reason>,
+    /// The `rigor:` comment that would make it checkable, where rigor knows it.
+    pub comment: Option<String>,
 }
 
 /// Everything found in one document.
@@ -96,8 +102,9 @@ struct Placed {
     defines: Option<String>,
     /// Whether it is a premise the notes impose (written before an implication arrow).
     imposed: bool,
-    /// Its approximations that may not fail (`premises::loose_approximations`).
-    loose: Vec<Span>,
+    /// Its approximations that may not fail (`premises::loose_approximations`), each
+    /// with its symbols.
+    loose: Vec<(Span, Vec<String>)>,
     /// Whether a part of it could not be written into the derivation (then it is not
     /// checked).
     unwritten: bool,
@@ -744,9 +751,50 @@ fn refuted(d: &Diagnostic) -> bool {
     )
 }
 
+/// The verdict on a placed chain, and for one that needs context, why.
+fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
+    let mut report = verdict_on(checked, p);
+    if report.verdict == Verdict::NeedsContext {
+        let reason = reason_for(checked, p, &report.diagnostics);
+        if reason == Reason::Approximation {
+            report.comment = premises::small_comment(&p.loose, &report.diagnostics);
+        }
+        report.reason = Some(reason);
+    }
+    report
+}
+
+/// Why a placed chain needs context (`diags`: its report's diagnostics).
+fn reason_for(checked: &FileReport, p: &Placed, diags: &[Diagnostic]) -> Reason {
+    let at = |d: &Diagnostic| d.primary.as_ref().map(|(s, _)| s.start);
+    let refuted_in = |part: &Option<Part>| {
+        part.as_ref()
+            .is_some_and(|part| part_outcome(checked, part, p.span).1.iter().any(refuted))
+    };
+    if p.unwritten {
+        Reason::Unchecked
+    } else if p.imposed {
+        Reason::Imposed
+    } else if diags
+        .iter()
+        .any(|d| at(d).is_some_and(|a| p.loose.iter().any(|(s, _)| a >= s.start && a < s.end)))
+    {
+        Reason::Approximation
+    } else if diags
+        .iter()
+        .any(|d| later_link(p, d).is_some_and(|l| !l.fresh.is_empty()))
+    {
+        Reason::NewSymbol
+    } else if refuted_in(&p.first) || refuted_in(&p.rest) {
+        Reason::Stated
+    } else {
+        Reason::Undetermined
+    }
+}
+
 /// The verdict on a placed chain: its later links must follow (else it failed); its
 /// first link must hold on its own, or state a relation for a lone symbol.
-fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
+fn verdict_on(checked: &FileReport, p: &Placed) -> ChainReport {
     if p.unwritten {
         return ChainReport {
             span: p.span,
@@ -759,6 +807,8 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
             )],
             assuming: Vec::new(),
             defines: None,
+            reason: None,
+            comment: None,
         };
     }
     let holds = |s: &[Status]| !s.is_empty() && s.iter().all(Status::is_verified);
@@ -780,6 +830,8 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
             diagnostics: first_diags,
             assuming: Vec::new(),
             defines: None,
+            reason: None,
+            comment: None,
         };
     }
     // A verified chain says what its links assume (a division the signs do not show safe).
@@ -795,6 +847,8 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
         verdict,
         diagnostics,
         defines: p.defines.clone(),
+        reason: None,
+        comment: None,
     };
     if let Some((s, mut d)) = rest {
         if d.iter().any(refuted) {
@@ -866,6 +920,8 @@ fn verified_tail(checked: &FileReport, p: &Placed) -> Option<ChainReport> {
         diagnostics: Vec::new(),
         assuming: once(conditions(statuses.get(j + 1..).unwrap_or_default())),
         defines: None,
+        reason: None,
+        comment: None,
     })
 }
 
@@ -915,6 +971,8 @@ fn verified_head(checked: &FileReport, p: &Placed) -> Option<(ChainReport, usize
         diagnostics: Vec::new(),
         assuming: Vec::new(),
         defines: None,
+        reason: None,
+        comment: None,
     };
     Some((head, from))
 }

@@ -35,7 +35,7 @@ fn has_symbols(e: &Expr) -> bool {
 /// The links of `chain` (their spans in the document, from the left side to the end of
 /// the right side) that are approximations rigor may not fail: neither numbers on both
 /// sides nor about a quantity `deriv` declares small.
-pub(super) fn loose_approximations(chain: &Chain, deriv: &str) -> Vec<Span> {
+pub(super) fn loose_approximations(chain: &Chain, deriv: &str) -> Vec<(Span, Vec<String>)> {
     let small = small_names(deriv);
     let mut out = Vec::new();
     let mut lhs = &chain.first;
@@ -44,7 +44,10 @@ pub(super) fn loose_approximations(chain: &Chain, deriv: &str) -> Vec<Span> {
             let numbers = !has_symbols(lhs) && !has_symbols(&l.rhs);
             let in_series = mentions(lhs, &small) || mentions(&l.rhs, &small);
             if !numbers && !in_series {
-                out.push(lhs.span.to(l.span));
+                let mut names = Vec::new();
+                super::free(lhs, &mut Vec::new(), &mut names);
+                super::free(&l.rhs, &mut Vec::new(), &mut names);
+                out.push((lhs.span.to(l.span), names));
             }
         }
         lhs = &l.rhs;
@@ -52,12 +55,25 @@ pub(super) fn loose_approximations(chain: &Chain, deriv: &str) -> Vec<Span> {
     out
 }
 
+/// The `rigor:` comment that makes a loose approximation checkable: `small theta` when
+/// it is about one quantity (with several, which is small is the author's to say).
+pub(super) fn small_comment(loose: &[(Span, Vec<String>)], diags: &[Diagnostic]) -> Option<String> {
+    let at = diags
+        .iter()
+        .find_map(|d| d.primary.as_ref().map(|(s, _)| s.start))?;
+    let (_, names) = loose.iter().find(|(s, _)| at >= s.start && at < s.end)?;
+    match names.as_slice() {
+        [one] => Some(format!("rigor: small {}", one.trim_end_matches('\''))),
+        _ => None,
+    }
+}
+
 /// Diagnostics about loose approximations (see [`loose_approximations`]) say what the
 /// link needs instead of failing it.
-pub(super) fn loosen(diags: &mut [Diagnostic], loose: &[Span]) {
+pub(super) fn loosen(diags: &mut [Diagnostic], loose: &[(Span, Vec<String>)]) {
     for d in diags {
         let at = d.primary.as_ref().map(|(s, _)| s.start);
-        let inside = at.is_some_and(|a| loose.iter().any(|s| a >= s.start && a < s.end));
+        let inside = at.is_some_and(|a| loose.iter().any(|(s, _)| a >= s.start && a < s.end));
         if d.code == Code::Approximation && inside {
             d.code = Code::NotVerified;
             d.mistake = None;
@@ -115,6 +131,8 @@ pub(super) fn unsigned(
         .and_then(|d| d.primary.as_ref())
         .map_or(report.span, |(s, _)| *s);
     report.verdict = Verdict::NeedsContext;
+    report.reason = Some(super::Reason::Sign);
+    report.comment = Some(format!("rigor: symbols {} > 0", names.join(" ")));
     report.diagnostics = vec![Diagnostic::error(
         Code::NotVerified,
         format!(

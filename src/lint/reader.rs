@@ -263,6 +263,8 @@ fn read(
         diagnostics: vec![Diagnostic::error(Code::Syntax, message, span, "")],
         assuming: Vec::new(),
         defines: None,
+        reason: Some(super::Reason::Unread),
+        comment: None,
     };
     let after = e.span.end.saturating_sub(at);
     match extract::equals_after(rel, after) {

@@ -90,7 +90,9 @@ pub fn json(r: &LintReport) -> String {
                 })
                 .collect();
             json!({"line": line, "column": column, "verdict": word(&c.verdict),
-                   "assuming": c.assuming, "defines": c.defines, "diagnostics": diags})
+                   "assuming": c.assuming, "defines": c.defines,
+                   "reason": c.reason.map(|r| r.as_str()), "comment": c.comment,
+                   "diagnostics": diags})
         })
         .collect();
     json!({
@@ -104,18 +106,35 @@ pub fn json(r: &LintReport) -> String {
     .to_string()
 }
 
-/// GitHub annotations for failed chains.
+/// GitHub annotations: an error for each diagnostic of a failed chain, a notice for
+/// each chain that needs context (its reason, and the `rigor:` comment that would make
+/// it checkable where rigor knows it).
 pub fn github(r: &LintReport) -> String {
-    r.chains
-        .iter()
-        .filter(|c| c.verdict == Verdict::Failed)
-        .flat_map(|c| c.diagnostics.iter())
-        .fold(
-            (LineIndex::new(&r.source), String::new()),
-            |(idx, mut out), d| {
-                out.push_str(&super::github::command_in(&r.path, &idx, d));
-                (idx, out)
-            },
-        )
-        .1
+    let idx = LineIndex::new(&r.source);
+    let mut out = String::new();
+    for c in &r.chains {
+        match c.verdict {
+            Verdict::Failed => {
+                for d in &c.diagnostics {
+                    out.push_str(&super::github::command_in(&r.path, &idx, d));
+                }
+            }
+            Verdict::NeedsContext => {
+                let Some(first) = c.diagnostics.first() else {
+                    continue;
+                };
+                let mut d = first.clone();
+                d.severity = crate::diag::Severity::Note;
+                if let Some(reason) = c.reason {
+                    d.message = format!("{} [{}]", d.message, reason.as_str());
+                }
+                if let Some(comment) = &c.comment {
+                    d.notes.push(format!("to have it checked: {comment}"));
+                }
+                out.push_str(&super::github::command_in(&r.path, &idx, &d));
+            }
+            _ => {}
+        }
+    }
+    out
 }

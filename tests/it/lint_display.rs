@@ -250,3 +250,53 @@ fn the_corpus_of_notes_fails_only_its_slips_and_needs_context_for_at_most_two_in
     assert_eq!(chains, 58);
     assert!(needs * 5 <= chains * 2, "{needs} of {chains} need context");
 }
+
+#[test]
+fn json_and_github_give_each_chain_that_needs_context_its_reason_and_the_comment_that_helps() {
+    let (out, err, _) = lint(&["--format", "json", "tests/lint/display_forms.tex"]);
+    let v: serde_json::Value = serde_json::from_str(out.trim()).expect("json");
+    let needs: Vec<(u64, String, Option<String>)> = v["chains"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter(|c| c["verdict"] == "needs context")
+        .map(|c| {
+            (
+                c["line"].as_u64().unwrap_or_default(),
+                c["reason"].as_str().unwrap_or_default().to_string(),
+                c["comment"].as_str().map(String::from),
+            )
+        })
+        .collect();
+    assert_eq!(
+        needs,
+        [
+            (83, "unread".to_string(), None),
+            (84, "imposed".to_string(), None),
+            (
+                91,
+                "approximation".to_string(),
+                Some("rigor: small phi".to_string())
+            ),
+        ],
+        "{out}{err}"
+    );
+    // The sign a true chain needs, as a notice on its line with the comment to add.
+    let (out, _, code) = lint(&["--format", "github", "tests/lint/corpus/inertia.md"]);
+    assert_eq!(code, 1, "{out}");
+    let notices: Vec<&str> = out.lines().filter(|l| l.starts_with("::notice")).collect();
+    assert_eq!(notices.len(), 1, "{out}");
+    assert!(
+        notices[0].starts_with("::notice file=tests/lint/corpus/inertia.md,line=58,"),
+        "{out}"
+    );
+    assert!(
+        notices[0].contains("[sign]%0Ato have it checked: rigor: symbols R > 0"),
+        "{out}"
+    );
+    assert_eq!(
+        out.lines().filter(|l| l.starts_with("::error")).count(),
+        2,
+        "{out}"
+    );
+}
