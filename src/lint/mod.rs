@@ -8,6 +8,7 @@ use crate::diag::{Code, Mistake};
 mod display;
 mod extract;
 mod mass;
+mod partial;
 mod premises;
 mod reader;
 mod reason;
@@ -17,6 +18,7 @@ use crate::diag::{Diagnostic, LineIndex};
 use crate::syntax::ast::{Chain, Expr, ExprKind, Func, Reading, Span};
 use crate::syntax::ParseOptions;
 pub use extract::{pieces, DocKind, Piece};
+use partial::{conditions, once, verified_head, verified_tail};
 pub use reason::Reason;
 use std::collections::{HashMap, HashSet};
 use std::sync::{Arc, Mutex};
@@ -755,41 +757,13 @@ fn refuted(d: &Diagnostic) -> bool {
 fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
     let mut report = verdict_on(checked, p);
     if report.verdict == Verdict::NeedsContext {
-        let reason = reason_for(checked, p, &report.diagnostics);
+        let reason = reason::of(checked, p, &report.diagnostics);
         if reason == Reason::Approximation {
             report.comment = premises::small_comment(&p.loose, &report.diagnostics);
         }
         report.reason = Some(reason);
     }
     report
-}
-
-/// Why a placed chain needs context (`diags`: its report's diagnostics).
-fn reason_for(checked: &FileReport, p: &Placed, diags: &[Diagnostic]) -> Reason {
-    let at = |d: &Diagnostic| d.primary.as_ref().map(|(s, _)| s.start);
-    let refuted_in = |part: &Option<Part>| {
-        part.as_ref()
-            .is_some_and(|part| part_outcome(checked, part, p.span).1.iter().any(refuted))
-    };
-    if p.unwritten {
-        Reason::Unchecked
-    } else if p.imposed {
-        Reason::Imposed
-    } else if diags
-        .iter()
-        .any(|d| at(d).is_some_and(|a| p.loose.iter().any(|(s, _)| a >= s.start && a < s.end)))
-    {
-        Reason::Approximation
-    } else if diags
-        .iter()
-        .any(|d| later_link(p, d).is_some_and(|l| !l.fresh.is_empty()))
-    {
-        Reason::NewSymbol
-    } else if refuted_in(&p.first) || refuted_in(&p.rest) {
-        Reason::Stated
-    } else {
-        Reason::Undetermined
-    }
 }
 
 /// The verdict on a placed chain: its later links must follow (else it failed); its
@@ -902,79 +876,6 @@ fn verdict_on(checked: &FileReport, p: &Placed) -> ChainReport {
         ));
     }
     report(Verdict::NeedsContext, first_diags)
-}
-
-/// The links of a chain that needs context, from the last that does not hold on: a
-/// chain of their own when they all hold (`dm = m dA/A = m 2 pi r dr/(pi R^2) = 2 m r
-/// dr/R^2`: the last link is algebra, and verified).
-fn verified_tail(checked: &FileReport, p: &Placed) -> Option<ChainReport> {
-    let (statuses, _) = part_outcome(checked, p.rest.as_ref()?, p.span);
-    if statuses.len() != p.later.len() {
-        return None;
-    }
-    let j = statuses.iter().rposition(|s| !s.is_verified())?;
-    let from = p.later.get(j)?.rhs;
-    (j + 1 < statuses.len()).then(|| ChainReport {
-        span: Span::new(from, p.span.end),
-        verdict: Verdict::Verified,
-        diagnostics: Vec::new(),
-        assuming: once(conditions(statuses.get(j + 1..).unwrap_or_default())),
-        defines: None,
-        reason: None,
-        comment: None,
-    })
-}
-
-/// The side conditions verified links assume.
-fn conditions(statuses: &[Status]) -> Vec<String> {
-    statuses
-        .iter()
-        .flat_map(|s| match s {
-            Status::Verified {
-                side_conditions, ..
-            } => side_conditions.clone(),
-            _ => Vec::new(),
-        })
-        .collect()
-}
-
-/// Each string once, in first-seen order.
-fn once(v: Vec<String>) -> Vec<String> {
-    let mut seen = HashSet::new();
-    v.into_iter().filter(|c| seen.insert(c.clone())).collect()
-}
-
-/// The links of a chain that needs context, from the first up to the first that does
-/// not hold, when the first is a step that holds (not only a relation the notes state):
-/// a chain of their own, and where the rest of the chain starts (`a b = I_G/m = k_G^2`:
-/// the first link follows from the relation before it; the second brings in `k_G`).
-/// Only links that hold with nothing assumed count: a head verified assuming a divisor
-/// nonzero (`dm = m dA/A`, read as products, needs `A != 0`) stays with the chain.
-fn verified_head(checked: &FileReport, p: &Placed) -> Option<(ChainReport, usize)> {
-    let settled = |s: &Status| matches!(s, Status::Verified { side_conditions, .. } if side_conditions.is_empty());
-    let (first, _) = part_outcome(checked, p.first.as_ref()?, p.span);
-    if first.is_empty() || !first.iter().all(settled) {
-        return None;
-    }
-    let (statuses, _) = part_outcome(checked, p.rest.as_ref()?, p.span);
-    if statuses.len() != p.later.len() {
-        return None;
-    }
-    let k = statuses.iter().position(|s| !settled(s))?;
-    let (end, from) = match k.checked_sub(1) {
-        None => (p.first_link.end, p.first_link.start),
-        Some(i) => (p.later.get(i)?.span.end, p.later.get(i)?.rhs),
-    };
-    let head = ChainReport {
-        span: Span::new(p.span.start, end),
-        verdict: Verdict::Verified,
-        diagnostics: Vec::new(),
-        assuming: Vec::new(),
-        defines: None,
-        reason: None,
-        comment: None,
-    };
-    Some((head, from))
 }
 
 /// The later link a diagnostic is about.

@@ -2,6 +2,10 @@
 //! `"reason"`, GitHub annotations in their title), with the `rigor:` comment that would
 //! make the chain checkable where rigor knows it.
 
+use super::{later_link, part_outcome, refuted, Part, Placed};
+use crate::check::FileReport;
+use crate::diag::Diagnostic;
+
 /// The class of a "needs context" verdict.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Reason {
@@ -39,5 +43,33 @@ impl Reason {
             Reason::Undetermined => "undetermined",
             Reason::Unchecked => "unchecked",
         }
+    }
+}
+
+/// Why a placed chain needs context (`diags`: its report's diagnostics).
+pub(super) fn of(checked: &FileReport, p: &Placed, diags: &[Diagnostic]) -> Reason {
+    let at = |d: &Diagnostic| d.primary.as_ref().map(|(s, _)| s.start);
+    let refuted_in = |part: &Option<Part>| {
+        part.as_ref()
+            .is_some_and(|part| part_outcome(checked, part, p.span).1.iter().any(refuted))
+    };
+    if p.unwritten {
+        Reason::Unchecked
+    } else if p.imposed {
+        Reason::Imposed
+    } else if diags
+        .iter()
+        .any(|d| at(d).is_some_and(|a| p.loose.iter().any(|(s, _)| a >= s.start && a < s.end)))
+    {
+        Reason::Approximation
+    } else if diags
+        .iter()
+        .any(|d| later_link(p, d).is_some_and(|l| !l.fresh.is_empty()))
+    {
+        Reason::NewSymbol
+    } else if refuted_in(&p.first) || refuted_in(&p.rest) {
+        Reason::Stated
+    } else {
+        Reason::Undetermined
     }
 }
