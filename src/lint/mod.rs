@@ -105,8 +105,8 @@ struct Placed {
     /// Whether it is a premise the notes impose (written before an implication arrow).
     imposed: bool,
     /// Its approximations that may not fail (`premises::loose_approximations`), each
-    /// with its symbols.
-    loose: Vec<(Span, Vec<String>)>,
+    /// with the comment that would make it checkable.
+    loose: Vec<premises::Loose>,
     /// Whether a part of it could not be written into the derivation (then it is not
     /// checked).
     unwritten: bool,
@@ -756,7 +756,8 @@ fn refuted(d: &Diagnostic) -> bool {
 /// The verdict on a placed chain, and for one that needs context, why.
 fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
     let mut report = verdict_on(checked, p);
-    if report.verdict == Verdict::NeedsContext {
+    premises::beyond_order(&mut report, &p.loose);
+    if report.verdict == Verdict::NeedsContext && report.reason.is_none() {
         let reason = reason::of(checked, p, &report.diagnostics);
         if reason == Reason::Approximation {
             report.comment = premises::small_comment(&p.loose, &report.diagnostics);

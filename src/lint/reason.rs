@@ -59,7 +59,7 @@ pub(super) fn of(checked: &FileReport, p: &Placed, diags: &[Diagnostic]) -> Reas
         Reason::Imposed
     } else if diags
         .iter()
-        .any(|d| at(d).is_some_and(|a| p.loose.iter().any(|(s, _)| a >= s.start && a < s.end)))
+        .any(|d| at(d).is_some_and(|a| p.loose.iter().any(|l| a >= l.span.start && a < l.span.end)))
     {
         Reason::Approximation
     } else if diags

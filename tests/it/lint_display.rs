@@ -247,6 +247,19 @@ fn the_corpus_of_notes_fails_only_its_slips_and_needs_context_for_at_most_two_in
         out.contains("inertia.md:58:1: needs context: this holds where R > 0, which the notes do not declare; `rigor: symbols R > 0` in a comment makes it checkable"),
         "{out}"
     );
+    // `1 - \cos\theta \approx \theta^2/2` is a second-order statement, with `theta`
+    // kept to the first order by `\theta \ll 1`: at that order `\theta^2/3` would pass
+    // too, so it needs the order, which the JSON report names.
+    let (out, _, _) = lint(&["--format", "json", "tests/lint/corpus/pendulum.tex"]);
+    let v: serde_json::Value = serde_json::from_str(out.trim()).expect("json");
+    let last = v["chains"]
+        .as_array()
+        .and_then(|c| c.last())
+        .cloned()
+        .unwrap_or_default();
+    assert_eq!(last["line"], 53, "{out}");
+    assert_eq!(last["verdict"], "needs context", "{out}");
+    assert_eq!(last["comment"], "rigor: small theta to order 2", "{out}");
     assert_eq!(chains, 58);
     assert!(needs * 5 <= chains * 2, "{needs} of {chains} need context");
 }
