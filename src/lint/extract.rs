@@ -384,12 +384,6 @@ pub fn relations(line: &str) -> Vec<(&str, usize, bool)> {
     parts.push((start, line.len(), false));
     let mut out: Vec<(&str, usize, bool)> = Vec::new();
     for (a, b, arrow) in parts {
-        // An arrow after a relation, before the next one, makes it a premise.
-        if arrow {
-            if let Some(last) = out.last_mut() {
-                last.2 = true;
-            }
-        }
         let mut a = a;
         let part = &line[a..b];
         if let Some(colon) = top_level_colon(part) {
@@ -402,6 +396,12 @@ pub fn relations(line: &str) -> Vec<(&str, usize, bool)> {
         let text = &line[a..b];
         if has_relation(text) {
             out.push((text, a, false));
+        }
+        // An arrow after a relation, before the next one, makes it a premise.
+        if arrow {
+            if let Some(last) = out.last_mut() {
+                last.2 = true;
+            }
         }
     }
     out
