@@ -2,7 +2,7 @@
 //! declare what they use. Markdown goes through a CommonMark parser (pulldown-cmark,
 //! with its math extension), so code blocks, inline code and `\$` are never math.
 
-use pulldown_cmark::{Event, Options, Parser, Tag};
+use pulldown_cmark::{CodeBlockKind, Event, Options, Parser, Tag, TagEnd};
 
 /// The kind of document.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -32,12 +32,14 @@ pub enum Piece {
     /// A heading: what the notes derive under one heading is one scope (its
     /// definitions and stated relations do not reach the next).
     Heading,
-    /// Display math: its text and the byte offset where it starts.
+    /// Math: its text and the byte offset where it starts.
     Math {
         /// The math between the delimiters.
         text: String,
         /// Where it starts in the document.
         start: usize,
+        /// Whether it is inline math in prose (`$a = b$`), not a display.
+        inline: bool,
     },
 }
 
@@ -54,37 +56,132 @@ fn directive(comment: &str) -> Option<String> {
     Some(rest.trim().to_string())
 }
 
+/// The pieces of a Markdown document: `$$…$$` and `$…$` math (pulldown-cmark's), MyST
+/// ```` ```{math} ```` fences and `` {math}`…` `` roles, and the `\[…\]`, `\(…\)` and
+/// `\begin{align}…` math that MathJax reads in the text; each with its offset, in
+/// document order.
 fn markdown(doc: &str) -> Vec<Piece> {
-    let mut out = Vec::new();
+    let mut out: Vec<(usize, Piece)> = Vec::new();
+    // What the parser already read as math, code or HTML: never scanned for `\[`.
+    let mut covered: Vec<std::ops::Range<usize>> = Vec::new();
+    // Inside a MyST math fence: where its text starts and ends so far.
+    let mut fence: Option<Option<(usize, usize)>> = None;
+    let mut role = false;
     let parser = Parser::new_ext(doc, Options::ENABLE_MATH).into_offset_iter();
     for (event, range) in parser {
+        let at = range.start;
+        let whole = doc.get(range.clone()).unwrap_or("");
+        let was_role = std::mem::take(&mut role);
         match event {
             Event::DisplayMath(text) => {
-                let whole = doc.get(range.clone()).unwrap_or("");
-                let start = range.start + whole.find(text.as_ref()).unwrap_or(0);
-                out.push(Piece::Math {
-                    text: text.to_string(),
-                    start,
-                });
+                let start = at + whole.find(text.as_ref()).unwrap_or(0);
+                out.push((at, math(text.to_string(), start, false)));
+                covered.push(range);
             }
-            Event::Start(Tag::Heading { .. }) => out.push(Piece::Heading),
-            Event::Start(Tag::Paragraph)
-                if numbered_heading(doc.get(range.clone()).unwrap_or("")) =>
-            {
-                out.push(Piece::Heading);
+            Event::InlineMath(text) => {
+                let start = at + whole.find(text.as_ref()).unwrap_or(0);
+                out.push((at, math(text.to_string(), start, true)));
+                covered.push(range);
+            }
+            Event::Start(Tag::CodeBlock(kind)) => {
+                fence = matches!(&kind, CodeBlockKind::Fenced(info)
+                    if info.trim_start().starts_with("{math}"))
+                .then_some(None);
+                covered.push(range);
+            }
+            // A MyST math block: its lines, as one display.
+            Event::Text(_) if fence.is_some() => {
+                let (from, _) = fence.flatten().unwrap_or((range.start, range.end));
+                fence = Some(Some((from, range.end)));
+            }
+            Event::End(TagEnd::CodeBlock) => {
+                if let Some(Some((from, to))) = fence.take() {
+                    out.push((from, math(myst_body(&doc[from..to]), from, false)));
+                }
+            }
+            Event::Text(t) => role = t.ends_with("{math}"),
+            Event::Code(text) => {
+                if was_role {
+                    let start = at + whole.find(text.as_ref()).unwrap_or(0);
+                    out.push((at, math(text.to_string(), start, true)));
+                }
+                covered.push(range);
+            }
+            Event::Start(Tag::Heading { .. }) => out.push((at, Piece::Heading)),
+            Event::Start(Tag::Paragraph) if numbered_heading(whole) => {
+                out.push((at, Piece::Heading));
             }
             Event::Html(h) | Event::InlineHtml(h) => {
+                covered.push(range);
                 let mut rest = h.as_ref();
                 while let Some(i) = rest.find("<!--") {
                     let after = &rest[i + 4..];
                     let Some(j) = after.find("-->") else { break };
                     if let Some(d) = directive(&after[..j]) {
-                        out.push(Piece::Directive(d));
+                        out.push((at, Piece::Directive(d)));
                     }
                     rest = &after[j + 3..];
                 }
             }
             _ => {}
+        }
+    }
+    out.extend(mathjax(doc, &covered));
+    // Stable: pieces at one offset keep the parser's order.
+    out.sort_by_key(|(at, _)| *at);
+    out.into_iter().map(|(_, p)| p).collect()
+}
+
+/// The body of a MyST math block with its option lines (`:label: eq-1`) blanked.
+fn myst_body(text: &str) -> String {
+    text.split_inclusive('\n')
+        .map(|l| {
+            let body = l.trim_end_matches(['\n', '\r']);
+            if body.trim_start().starts_with(':') {
+                " ".repeat(body.len()) + &l[body.len()..]
+            } else {
+                l.to_string()
+            }
+        })
+        .collect()
+}
+
+fn math(text: String, start: usize, inline: bool) -> Piece {
+    Piece::Math {
+        text,
+        start,
+        inline,
+    }
+}
+
+/// The math MathJax reads in Markdown text outside what the parser read as math, code
+/// or HTML: `\[…\]`, `\(…\)` and display environments written bare.
+fn mathjax(doc: &str, covered: &[std::ops::Range<usize>]) -> Vec<(usize, Piece)> {
+    let mut out = Vec::new();
+    let mut i = 0;
+    while let Some(k) = doc[i..].find('\\').map(|k| k + i) {
+        if let Some(r) = covered.iter().find(|r| r.contains(&k)) {
+            i = r.end.max(k + 1);
+            continue;
+        }
+        let rest = &doc[k..];
+        let open = [("\\[", "\\]"), ("\\(", "\\)")]
+            .into_iter()
+            .find(|(o, _)| rest.starts_with(o))
+            .map(|(o, c)| (o.len(), c.to_string(), 0))
+            .or_else(|| environment(rest).map(|close| (0, close.clone(), close.len())));
+        let escaped = k > 0 && doc.as_bytes()[k - 1] == b'\\';
+        match open {
+            Some((olen, close, keep)) if !escaped => {
+                let body = k + olen;
+                let Some(e) = doc[body..].find(&close) else {
+                    break;
+                };
+                let text = doc[body..body + e + keep].to_string();
+                out.push((k, math(text, body, rest.starts_with("\\("))));
+                i = body + e + close.len();
+            }
+            _ => i = k + 1,
         }
     }
     out
@@ -131,17 +228,35 @@ fn numbered_heading(paragraph: &str) -> bool {
     keyword && words.next().is_some_and(numbered)
 }
 
-/// The environments whose content is display math.
+/// Where an inline `$…$` that starts `text` ends: the next `$` not escaped, before a
+/// blank line.
+fn inline_end(text: &str) -> Option<usize> {
+    let para = text.find("\n\n").unwrap_or(text.len());
+    let bytes = text.as_bytes();
+    (0..para).find(|&k| bytes[k] == b'$' && (k == 0 || bytes[k - 1] != b'\\'))
+}
+
+/// The environments whose content is display math (each also starred).
 const ENVIRONMENTS: [&str; 8] = [
     "equation",
-    "equation*",
+    "displaymath",
     "align",
-    "align*",
+    "alignat",
+    "flalign",
     "gather",
-    "gather*",
     "multline",
-    "multline*",
+    "eqnarray",
 ];
+
+/// The display environment that opens at the start of `rest`, and the text that closes
+/// it.
+fn environment(rest: &str) -> Option<String> {
+    let tail = rest.strip_prefix("\\begin{")?;
+    let name = &tail[..tail.find('}')?];
+    ENVIRONMENTS
+        .contains(&name.trim_end_matches('*'))
+        .then(|| format!("\\end{{{name}}}"))
+}
 
 fn latex(doc: &str) -> Vec<Piece> {
     let mut out = Vec::new();
@@ -166,25 +281,31 @@ fn latex(doc: &str) -> Vec<Piece> {
             i += 1;
             continue;
         }
-        let open = [("\\[", "\\]"), ("$$", "$$")]
+        // An environment is read whole, `\begin{…}` and `\end{…}` included: how its rows
+        // go together depends on its name.
+        let escaped = i > 0 && bytes[i - 1] == b'\\';
+        let open = [("\\[", "\\]"), ("$$", "$$"), ("\\(", "\\)"), ("$", "$")]
             .into_iter()
-            .find(|(o, _)| rest.starts_with(o))
-            .map(|(o, c)| (o.len(), c.to_string()))
-            .or_else(|| {
-                let env = ENVIRONMENTS
-                    .iter()
-                    .find(|e| rest.starts_with(&format!("\\begin{{{e}}}")))?;
-                Some((env.len() + 8, format!("\\end{{{env}}}")))
-            });
-        if let Some((olen, close)) = open {
+            .find(|(o, _)| rest.starts_with(o) && !escaped)
+            .map(|(o, c)| (o.len(), c.to_string(), 0))
+            .or_else(|| environment(rest).map(|close| (0, close.clone(), close.len())));
+        if let Some((1, _, _)) = open {
+            // Inline `$…$`, within its paragraph, to the next `$` not escaped.
+            if let Some(e) = inline_end(&doc[i + 1..]) {
+                out.push(math(doc[i + 1..i + 1 + e].to_string(), i + 1, true));
+                i += e + 2;
+            } else {
+                i += 1;
+            }
+            continue;
+        }
+        if let Some((olen, close, keep)) = open {
             let body_start = i + olen;
             let Some(k) = doc[body_start..].find(&close) else {
                 break;
             };
-            out.push(Piece::Math {
-                text: doc[body_start..body_start + k].to_string(),
-                start: body_start,
-            });
+            let text = doc[body_start..body_start + k + keep].to_string();
+            out.push(math(text, body_start, olen == 2 && rest.starts_with("\\(")));
             i = body_start + k + close.len();
             continue;
         }
@@ -193,41 +314,14 @@ fn latex(doc: &str) -> Vec<Piece> {
     out
 }
 
-/// The chains of one display: one per line of an `align` (split at `\\`, outside
-/// braces), each with its offset in the display's text.
-pub fn chain_lines(text: &str) -> Vec<(&str, usize)> {
-    let mut out = Vec::new();
-    let mut depth = 0i32;
-    let mut start = 0;
-    let mut escaped = false;
-    let mut chars = text.char_indices().peekable();
-    while let Some((k, c)) = chars.next() {
-        if escaped {
-            escaped = false;
-            continue;
-        }
-        match c {
-            '{' => depth += 1,
-            '}' => depth -= 1,
-            '\\' if depth == 0 && chars.peek().is_some_and(|(_, n)| *n == '\\') => {
-                out.push((text.get(start..k).unwrap_or(""), start));
-                chars.next();
-                start = k + 2;
-            }
-            '\\' => escaped = true,
-            _ => {}
-        }
-    }
-    out.push((text.get(start..).unwrap_or(""), start));
-    out.retain(|(s, _)| !s.trim().is_empty());
-    out
-}
-
-/// The relations of one chain line, each with its offset in the line. A line may hold
-/// several, set apart by `\quad`/`\qquad` or joined by an arrow (`\rightarrow`,
+/// The relations of one cleaned display (see `display::clean`), each with its offset
+/// in it. A display may hold several, set apart by [`super::display::SEP`], by
+/// `\quad`/`\qquad`, by a run of `~` between two relations, or joined by an arrow (`\rightarrow`,
 /// `\Rightarrow`, `\implies`); a part with no relation is a label (`\sum F_x`,
-/// `(5.1)`) and is left out, as is a label before a colon (`\sum M(A): …`).
-pub fn relations(line: &str) -> Vec<(&str, usize)> {
+/// `(5.1)`) and is left out, as is a label before a colon (`\sum M(A): …`). Each comes
+/// with whether an implication arrow follows it (`\Rightarrow`, `\implies`,
+/// `\therefore`, `\rightarrow`): then it is a premise of what follows.
+pub fn relations(line: &str) -> Vec<(&str, usize, bool)> {
     const BREAKS: [&str; 9] = [
         "qquad",
         "quad",
@@ -239,6 +333,14 @@ pub fn relations(line: &str) -> Vec<(&str, usize)> {
         "iff",
         "therefore",
     ];
+    const ARROWS: [&str; 6] = [
+        "rightarrow",
+        "Rightarrow",
+        "longrightarrow",
+        "Longrightarrow",
+        "implies",
+        "therefore",
+    ];
     let mut parts = Vec::new();
     let mut start = 0;
     let mut depth = 0i32;
@@ -248,6 +350,20 @@ pub fn relations(line: &str) -> Vec<(&str, usize)> {
         match bytes[k] {
             b'{' => depth += 1,
             b'}' => depth -= 1,
+            super::display::SEP => {
+                parts.push((start, k, false));
+                start = k + 1;
+            }
+            // A run of `~` between two relations sets them apart; elsewhere it is a space.
+            b'~' if depth == 0 => {
+                let run = line[k..].bytes().take_while(|b| *b == b'~').count();
+                if has_relation(&line[start..k]) && has_relation(&line[k + run..]) {
+                    parts.push((start, k, false));
+                    start = k + run;
+                }
+                k += run;
+                continue;
+            }
             b'\\' => {
                 let name_len = line[k + 1..]
                     .bytes()
@@ -255,7 +371,7 @@ pub fn relations(line: &str) -> Vec<(&str, usize)> {
                     .count();
                 let name = &line[k + 1..k + 1 + name_len];
                 if depth == 0 && BREAKS.contains(&name) {
-                    parts.push((start, k));
+                    parts.push((start, k, ARROWS.contains(&name)));
                     start = k + 1 + name_len;
                 }
                 k += 1 + name_len.max(1);
@@ -265,9 +381,9 @@ pub fn relations(line: &str) -> Vec<(&str, usize)> {
         }
         k += 1;
     }
-    parts.push((start, line.len()));
-    let mut out = Vec::new();
-    for (a, b) in parts {
+    parts.push((start, line.len(), false));
+    let mut out: Vec<(&str, usize, bool)> = Vec::new();
+    for (a, b, arrow) in parts {
         let mut a = a;
         let part = &line[a..b];
         if let Some(colon) = top_level_colon(part) {
@@ -275,9 +391,17 @@ pub fn relations(line: &str) -> Vec<(&str, usize)> {
                 a += colon + 1;
             }
         }
+        // The relation starts at its first character, not at the spaces before it.
+        a += line[a..b].len() - line[a..b].trim_start().len();
         let text = &line[a..b];
         if has_relation(text) {
-            out.push((text, a));
+            out.push((text, a, false));
+        }
+        // An arrow after a relation, before the next one, makes it a premise.
+        if arrow {
+            if let Some(last) = out.last_mut() {
+                last.2 = true;
+            }
         }
     }
     out
@@ -298,7 +422,7 @@ fn top_level_colon(text: &str) -> Option<usize> {
 }
 
 /// Whether a piece of LaTeX math holds a relation outside braces.
-fn has_relation(text: &str) -> bool {
+pub(super) fn has_relation(text: &str) -> bool {
     const RELATIONS: [&str; 11] = [
         "approx",
         "simeq",
@@ -357,7 +481,10 @@ mod tests {
     use super::*;
 
     fn texts(line: &str) -> Vec<&str> {
-        relations(line).into_iter().map(|(t, _)| t.trim()).collect()
+        relations(line)
+            .into_iter()
+            .map(|(t, _, _)| t.trim())
+            .collect()
     }
 
     #[test]
@@ -380,7 +507,8 @@ mod tests {
         assert_eq!(texts(r"v = 3 \quad \text{(m/s)}"), ["v = 3"]);
         // Offsets point into the line.
         let line = r"x = 1 \implies y = 2";
-        let (t, at) = relations(line)[1];
+        let (t, at, _) = relations(line)[1];
+        assert!(relations(line)[0].2 && !relations(line)[1].2, "a premise");
         assert_eq!(&line[at..at + t.len()], t);
     }
 

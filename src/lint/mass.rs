@@ -168,11 +168,15 @@ pub(super) fn over_prose_mass(
                 verdict,
                 diagnostics: Vec::new(),
                 assuming: Vec::new(),
+                defines: None,
+                reason: None,
+                comment: None,
             }),
         }
     }
     for r in &mut reports {
         if r.verdict == Verdict::NeedsContext {
+            r.reason = Some(super::Reason::ProseMass);
             r.diagnostics.push(needs_body(r.span));
         }
     }

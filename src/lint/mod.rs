@@ -5,15 +5,21 @@
 //! say), a chain whose left side is a lone new symbol defining it for later chains.
 
 use crate::diag::{Code, Mistake};
+mod display;
 mod extract;
 mod mass;
+mod partial;
+mod premises;
+mod reader;
+mod reason;
 
 use crate::check::{check_source, FileReport, MemoryResolver, Options, Status};
 use crate::diag::{Diagnostic, LineIndex};
 use crate::syntax::ast::{Chain, Expr, ExprKind, Func, Reading, Span};
-use crate::syntax::latex::{parse_latex_chain, parse_latex_links};
 use crate::syntax::ParseOptions;
 pub use extract::{pieces, DocKind, Piece};
+use partial::{conditions, once, verified_head, verified_tail};
+pub use reason::Reason;
 use std::collections::{HashMap, HashSet};
 use std::sync::{Arc, Mutex};
 
@@ -26,6 +32,9 @@ pub enum Verdict {
     Failed,
     /// It depends on something the document defines in prose, or rigor cannot read it.
     NeedsContext,
+    /// It states what a new symbol stands for (`I_G = \frac{mL^2}{12}`, the symbol used
+    /// nowhere before): a definition, taken as the notes give it and not checked.
+    Defined,
 }
 
 /// One chain of a document and what became of it.
@@ -40,6 +49,12 @@ pub struct ChainReport {
     /// For a verified chain: what its links assume that the declared signs do not show
     /// (`b F m != 0`), each once.
     pub assuming: Vec<String>,
+    /// The new symbol a chain's first link defines (`I_G`), as rigor names it.
+    pub defines: Option<String>,
+    /// For a chain that needs context: why.
+    pub reason: Option<Reason>,
+    /// The `rigor:` comment that would make it checkable, where rigor knows it.
+    pub comment: Option<String>,
 }
 
 /// Everything found in one document.
@@ -85,6 +100,18 @@ struct Placed {
     /// `rigor:` comment) or defined: then a first link that does not hold is a mistake,
     /// not a relation taken from elsewhere.
     firm: bool,
+    /// The new symbol the first link defines, if it does.
+    defines: Option<String>,
+    /// Whether it is a premise the notes impose (written before an implication arrow).
+    imposed: bool,
+    /// Its approximations that may not fail (`premises::loose_approximations`), each
+    /// with the comment that would make it checkable.
+    loose: Vec<premises::Loose>,
+    /// Whether a part of it could not be written into the derivation (then it is not
+    /// checked).
+    unwritten: bool,
+    /// The names of its symbols.
+    symbols: Vec<String>,
 }
 
 /// What the notes derive under one heading.
@@ -96,11 +123,16 @@ struct Scope {
     names: HashSet<String>,
     /// The scope's own `rigor:` statements (with the names they declare) and chains.
     items: Vec<Item>,
+    /// Where the chains start that are statements of the prose (an inline relation of
+    /// one link): reported only when they hold, fail or define a symbol.
+    quiet: HashSet<usize>,
 }
 
 enum Item {
     Directive(String, Vec<String>),
     Chain(Chain),
+    /// A chain written before an implication arrow: a premise the notes impose.
+    Imposed(Chain),
 }
 
 /// The reports of the derivations checked so far in one run, by their text, and
@@ -171,6 +203,8 @@ struct Build<'a> {
     solve: &'a HashSet<String>,
     /// What this run has read and checked.
     cache: &'a Checked,
+    /// Whether the chain being placed is a premise the notes impose.
+    imposing: bool,
 }
 
 impl Scope {
@@ -180,6 +214,7 @@ impl Scope {
             directives: directives.to_string(),
             names: names.clone(),
             items: Vec::new(),
+            quiet: HashSet::new(),
         }
     }
 
@@ -199,6 +234,7 @@ impl Scope {
             time,
             solve,
             cache,
+            imposing: false,
         };
         for item in &self.items {
             match item {
@@ -209,6 +245,11 @@ impl Scope {
                     b.known.extend(names.iter().cloned());
                 }
                 Item::Chain(chain) => place(chain, doc, &mut b),
+                Item::Imposed(chain) => {
+                    b.imposing = true;
+                    place(chain, doc, &mut b);
+                    b.imposing = false;
+                }
             }
         }
         b
@@ -227,7 +268,7 @@ impl Scope {
     ) {
         let mut time = HashSet::new();
         for item in &self.items {
-            if let Item::Chain(c) = item {
+            if let Item::Chain(c) | Item::Imposed(c) = item {
                 let mut names = Vec::new();
                 free(&c.first, &mut Vec::new(), &mut names);
                 for l in &c.links {
@@ -261,8 +302,19 @@ impl Scope {
                 .filter(|n| !b.known.contains(n) && !solve.contains(n))
                 .collect();
             if more.is_empty() || round == 2 {
+                // A failure that positive values of the symbols the linter declared
+                // would remove is a sign the notes do not state, not a slip.
+                let positive = b
+                    .placed
+                    .iter()
+                    .any(|p| verdict(&checked, p).verdict == Verdict::Failed)
+                    .then(|| premises::positive(&b.deriv))
+                    .map(|(deriv, names)| (cache.report(name, &deriv, opts), names));
                 for p in &b.placed {
                     let mut report = verdict(&checked, p);
+                    if let Some((again, names)) = &positive {
+                        premises::unsigned(&mut report, verdict(again, p), (&p.symbols, names));
+                    }
                     for d in &mut report.diagnostics {
                         document_lines(d, &b.deriv, &b.placed, doc);
                     }
@@ -306,83 +358,20 @@ pub fn lint(name: &str, doc: &str, kind: DocKind, opts: &Options) -> LintReport 
         source: doc.to_string(),
         chains: Vec::new(),
     };
-    let mut directives = String::new();
-    let mut names: HashSet<String> = HashSet::new();
-    let lines = LineIndex::new(doc);
-    let mut scope = Scope::default();
-    let mut scopes: Vec<Scope> = Vec::new();
-    // The last expression of the previous chain: a display starting with `=` goes on.
-    let mut last: Option<Expr> = None;
-    let popts = ParseOptions {
-        max_depth: opts.parse.max_depth,
-    };
     let cache = Checked::default();
+    let mut reader = reader::Reader::new(doc, opts, &cache);
     for piece in pieces(doc, kind) {
-        match piece {
-            Piece::Heading => {
-                scopes.push(std::mem::replace(
-                    &mut scope,
-                    Scope::under(&directives, &names),
-                ));
-                last = None;
-            }
-            // `<!-- rigor: ## Sliding -->`: a heading the notes do not show.
-            Piece::Directive(text) if text.starts_with('#') => {
-                scopes.push(std::mem::replace(
-                    &mut scope,
-                    Scope::under(&directives, &names),
-                ));
-                last = None;
-            }
-            Piece::Directive(text) => {
-                if !cache.parses(&text) {
-                    continue;
-                }
-                let words: Vec<String> = text
-                    .split_whitespace()
-                    .map(|w| {
-                        w.trim_matches(|c: char| !c.is_alphanumeric() && c != '_')
-                            .to_string()
-                    })
-                    .collect();
-                names.extend(words.iter().cloned());
-                directives.push_str(&text);
-                directives.push('\n');
-                scope.items.push(Item::Directive(text, words));
-            }
-            Piece::Math { text, start } => {
-                for (line, off) in extract::chain_lines(&text) {
-                    for (rel, within) in extract::relations(line) {
-                        let at = start + off + within;
-                        let (unread, parsed) = read(rel, at, last.as_ref(), &popts);
-                        report.chains.extend(unread);
-                        match parsed {
-                            None => last = None,
-                            Some(chain) => {
-                                last = chain.links.last().map(|l| l.rhs.clone());
-                                let body = directives
-                                    .lines()
-                                    .any(|l| l.trim_start().starts_with("body"));
-                                let (prose, rest) = if body {
-                                    (Vec::new(), Some(chain))
-                                } else {
-                                    mass::over_prose_mass(chain, (opts, &cache))
-                                };
-                                report.chains.extend(prose);
-                                scope.items.extend(rest.map(Item::Chain));
-                            }
-                        }
-                    }
-                }
-            }
-        }
+        reader.piece(piece, &mut report.chains);
     }
-    scopes.push(scope);
+    let (scopes, cleaned) = reader.finish();
+    let lines = LineIndex::new(&cleaned);
     // Scopes share nothing but the reports of identical derivations: they are checked
     // in parallel.
     let checked = crate::files::parallel(&scopes, |s| {
         let mut out = Vec::new();
         s.close((name, &lines), (opts, &cache), &mut out);
+        // A condition or value stated in a sentence (`$\mu = 0$`) is not a chain.
+        out.retain(|c| !(c.verdict == Verdict::NeedsContext && s.quiet.contains(&c.span.start)));
         out
     });
     report.chains.extend(checked.into_iter().flatten());
@@ -426,44 +415,26 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         time,
         solve,
         cache,
+        imposing,
     } = b;
     let mut names = first_link_names(chain);
     let is_known = |n: &String| known.contains(n.trim_end_matches('\'')) || n == "t";
-    let firm = names.iter().all(is_known);
+    let firm = !*imposing && names.iter().all(is_known);
+    let loose = premises::loose_approximations(chain, deriv);
     let constraint = is_constraint(&names, time);
     let later = later_links(chain, &mut names, seen, &is_known);
     seen.extend(names.iter().map(|n| n.trim_end_matches('\'').to_string()));
-    let defines = match &chain.first.kind {
-        ExprKind::Sym(n) if !declared.contains(n.trim_end_matches('\'')) && !n.ends_with('\'') => {
-            Some(n.clone())
-        }
-        _ => None,
-    };
+    let chain_names = names.clone();
+    let defines = new_symbol(chain, declared, time);
     declare(names, defines.as_ref(), deriv, declared, (time, solve));
-    let text = |s: Span| doc.get(s.start..s.end).unwrap_or("");
+    let text = |s: Span| flat(doc, s);
     let last = chain.links.last().map_or(chain.first.span, |l| l.span);
     let chain_span = chain.first.span.to(last);
     let Some(link0) = chain.links.first() else {
         return;
     };
-    let write = |kw: &str, pieces: &[Span], deriv: &mut String| -> Option<Part> {
-        let mut stmt = format!("{kw} $$ ");
-        for p in pieces {
-            stmt.push_str(text(*p));
-            stmt.push(' ');
-        }
-        stmt.push_str("$$\n");
-        if !cache.parses(&stmt) {
-            return None;
-        }
-        let mut part = Vec::new();
-        let mut at = deriv.len() + kw.len() + 4;
-        for p in pieces {
-            part.push((at, p.start, p.end - p.start));
-            at += p.end - p.start + 1;
-        }
-        deriv.push_str(&stmt);
-        Some(part)
+    let write = |kw: &str, pieces: &[Span], deriv: &mut String| {
+        write_statement(kw, pieces, (doc, cache), deriv)
     };
     let rest_span = chain
         .links
@@ -483,13 +454,15 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
                 text(chain.first.span),
                 text(link0.rhs.span)
             );
-            if !cache.parses(&stmt) {
+            if cache.parses(&stmt) {
+                stated = Some(vec![(deriv.len() + 7, chain.first.span.start, 0)]);
+                deriv.push_str(&stmt);
+                (None, true)
+            } else {
                 declared.remove(s);
-                return;
+                stated = None;
+                (None, false)
             }
-            stated = Some(vec![(deriv.len() + 7, chain.first.span.start, 0)]);
-            deriv.push_str(&stmt);
-            (None, true)
         }
         None => {
             // Checked as a claim; then, holding or not, taken as what the notes state —
@@ -506,6 +479,9 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         }
     };
     let rest = rest_span.and_then(|r| write("claim", &[link0.rhs.span, r], deriv));
+    // A part that does not read as rigor's own statement is not checked: the chain
+    // needs context, never verified by what was left out.
+    let unwritten = (first.is_none() && !states) || (rest_span.is_some() && rest.is_none());
     // Then each later link is taken as stated too, as the first is: one that does not
     // follow states something new (`m y'' = 0`), which later chains may use.
     for ((prev, l), later) in chain
@@ -518,6 +494,7 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
             let _ = write("given", &[prev.rhs.span, l.span], deriv);
         }
     }
+    let defined = (first.is_none() && states).then_some(defines).flatten();
     placed.push(Placed {
         first,
         rest,
@@ -527,7 +504,63 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         first_link: Span::new(link0.rhs.span.start, link0.span.end),
         states,
         firm,
+        defines: defined,
+        imposed: *imposing,
+        loose,
+        unwritten,
+        symbols: chain_names,
     });
+}
+
+/// The text of `s` in the document on one line: a link may run over several rows of a
+/// display.
+fn flat(doc: &str, s: Span) -> String {
+    doc.get(s.start..s.end)
+        .unwrap_or("")
+        .replace(['\n', '\r'], " ")
+}
+
+/// Writes `kw $$ pieces $$` into the derivation when it reads, and where each piece
+/// came from.
+fn write_statement(
+    kw: &str,
+    pieces: &[Span],
+    (doc, cache): (&str, &Checked),
+    deriv: &mut String,
+) -> Option<Part> {
+    let mut stmt = format!("{kw} $$ ");
+    for p in pieces {
+        stmt.push_str(&flat(doc, *p));
+        stmt.push(' ');
+    }
+    stmt.push_str("$$\n");
+    if !cache.parses(&stmt) {
+        return None;
+    }
+    let mut part = Vec::new();
+    let mut at = deriv.len() + kw.len() + 4;
+    for p in pieces {
+        part.push((at, p.start, p.end - p.start));
+        at += p.end - p.start + 1;
+    }
+    deriv.push_str(&stmt);
+    Some(part)
+}
+
+/// The lone new symbol a chain's first link defines: not declared, not a derivative,
+/// and not written with a derivative elsewhere (a function of time: a relation for it
+/// is a constraint or a law, never a `let`).
+fn new_symbol(chain: &Chain, declared: &HashSet<String>, time: &HashSet<String>) -> Option<String> {
+    match &chain.first.kind {
+        ExprKind::Sym(n)
+            if !declared.contains(n.trim_end_matches('\''))
+                && !n.ends_with('\'')
+                && !time.contains(n) =>
+        {
+            Some(n.clone())
+        }
+        _ => None,
+    }
 }
 
 /// The free names of a chain's first link.
@@ -580,7 +613,9 @@ fn declare(
     }
     for (kw, list) in kinds {
         if !list.is_empty() {
-            deriv.push_str(&format!("{kw} {}\n", list.join(" ")));
+            // Room for ` > 0` (`premises::positive`), so offsets stay as they are.
+            let room = if kw == "symbols" { premises::ROOM } else { "" };
+            deriv.push_str(&format!("{kw} {}{room}\n", list.join(" ")));
         }
     }
 }
@@ -693,25 +728,60 @@ fn refuted(d: &Diagnostic) -> bool {
     )
 }
 
+/// The verdict on a placed chain, and for one that needs context, why.
+fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
+    let mut report = verdict_on(checked, p);
+    premises::beyond_order(&mut report, &p.loose);
+    if report.verdict == Verdict::NeedsContext && report.reason.is_none() {
+        let reason = reason::of(checked, p, &report.diagnostics);
+        if reason == Reason::Approximation {
+            report.comment = premises::small_comment(&p.loose, &report.diagnostics);
+        }
+        report.reason = Some(reason);
+    }
+    report
+}
+
 /// The verdict on a placed chain: its later links must follow (else it failed); its
 /// first link must hold on its own, or state a relation for a lone symbol.
-fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
+fn verdict_on(checked: &FileReport, p: &Placed) -> ChainReport {
+    if p.unwritten {
+        return ChainReport {
+            span: p.span,
+            verdict: Verdict::NeedsContext,
+            diagnostics: vec![Diagnostic::error(
+                Code::NotVerified,
+                "needs context: rigor reads this chain but cannot write it as a derivation, so it is not checked",
+                p.span,
+                "",
+            )],
+            assuming: Vec::new(),
+            defines: None,
+            reason: None,
+            comment: None,
+        };
+    }
     let holds = |s: &[Status]| !s.is_empty() && s.iter().all(Status::is_verified);
     let (first_statuses, mut first_diags) = match &p.first {
         Some(part) => part_outcome(checked, part, p.span),
         None => (Vec::new(), Vec::new()),
     };
+    premises::loosen(&mut first_diags, &p.loose);
     let first_ok = p.first.is_none() || holds(&first_statuses);
-    let rest = p
-        .rest
-        .as_ref()
-        .map(|part| part_outcome(checked, part, p.span));
+    let rest = p.rest.as_ref().map(|part| {
+        let (s, mut d) = part_outcome(checked, part, p.span);
+        premises::loosen(&mut d, &p.loose);
+        (s, d)
+    });
     if p.firm && !p.states && first_diags.iter().any(refuted) {
         return ChainReport {
             span: p.span,
             verdict: Verdict::Failed,
             diagnostics: first_diags,
             assuming: Vec::new(),
+            defines: None,
+            reason: None,
+            comment: None,
         };
     }
     // A verified chain says what its links assume (a division the signs do not show safe).
@@ -726,6 +796,9 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
         },
         verdict,
         diagnostics,
+        defines: p.defines.clone(),
+        reason: None,
+        comment: None,
     };
     if let Some((s, mut d)) = rest {
         if d.iter().any(refuted) {
@@ -751,7 +824,10 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
             }
         }
         first_diags.extend(d);
-    } else if first_ok || (p.first.is_none() && p.states) {
+    } else if p.first.is_none() && p.states {
+        // Only a definition, nothing checked.
+        return report(Verdict::Defined, Vec::new());
+    } else if first_ok {
         return report(Verdict::Verified, Vec::new());
     }
     // What the first link needs is context, not a mistake: notes state relations that
@@ -760,7 +836,11 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
         if refuted(d) {
             d.code = Code::NotVerified;
             d.mistake = None;
-            d.message = "needs context: this relation does not hold for every value of its symbols; the document must define or give it".into();
+            d.message = if p.imposed {
+                premises::IMPOSED.into()
+            } else {
+                "needs context: this relation does not hold for every value of its symbols; the document must define or give it".into()
+            };
         }
     }
     if first_diags.is_empty() {
@@ -772,73 +852,6 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
         ));
     }
     report(Verdict::NeedsContext, first_diags)
-}
-
-/// The links of a chain that needs context, from the last that does not hold on: a
-/// chain of their own when they all hold (`dm = m dA/A = m 2 pi r dr/(pi R^2) = 2 m r
-/// dr/R^2`: the last link is algebra, and verified).
-fn verified_tail(checked: &FileReport, p: &Placed) -> Option<ChainReport> {
-    let (statuses, _) = part_outcome(checked, p.rest.as_ref()?, p.span);
-    if statuses.len() != p.later.len() {
-        return None;
-    }
-    let j = statuses.iter().rposition(|s| !s.is_verified())?;
-    let from = p.later.get(j)?.rhs;
-    (j + 1 < statuses.len()).then(|| ChainReport {
-        span: Span::new(from, p.span.end),
-        verdict: Verdict::Verified,
-        diagnostics: Vec::new(),
-        assuming: once(conditions(statuses.get(j + 1..).unwrap_or_default())),
-    })
-}
-
-/// The side conditions verified links assume.
-fn conditions(statuses: &[Status]) -> Vec<String> {
-    statuses
-        .iter()
-        .flat_map(|s| match s {
-            Status::Verified {
-                side_conditions, ..
-            } => side_conditions.clone(),
-            _ => Vec::new(),
-        })
-        .collect()
-}
-
-/// Each string once, in first-seen order.
-fn once(v: Vec<String>) -> Vec<String> {
-    let mut seen = HashSet::new();
-    v.into_iter().filter(|c| seen.insert(c.clone())).collect()
-}
-
-/// The links of a chain that needs context, from the first up to the first that does
-/// not hold, when the first is a step that holds (not only a relation the notes state):
-/// a chain of their own, and where the rest of the chain starts (`a b = I_G/m = k_G^2`:
-/// the first link follows from the relation before it; the second brings in `k_G`).
-/// Only links that hold with nothing assumed count: a head verified assuming a divisor
-/// nonzero (`dm = m dA/A`, read as products, needs `A != 0`) stays with the chain.
-fn verified_head(checked: &FileReport, p: &Placed) -> Option<(ChainReport, usize)> {
-    let settled = |s: &Status| matches!(s, Status::Verified { side_conditions, .. } if side_conditions.is_empty());
-    let (first, _) = part_outcome(checked, p.first.as_ref()?, p.span);
-    if first.is_empty() || !first.iter().all(settled) {
-        return None;
-    }
-    let (statuses, _) = part_outcome(checked, p.rest.as_ref()?, p.span);
-    if statuses.len() != p.later.len() {
-        return None;
-    }
-    let k = statuses.iter().position(|s| !settled(s))?;
-    let (end, from) = match k.checked_sub(1) {
-        None => (p.first_link.end, p.first_link.start),
-        Some(i) => (p.later.get(i)?.span.end, p.later.get(i)?.rhs),
-    };
-    let head = ChainReport {
-        span: Span::new(p.span.start, end),
-        verdict: Verdict::Verified,
-        diagnostics: Vec::new(),
-        assuming: Vec::new(),
-    };
-    Some((head, from))
 }
 
 /// The later link a diagnostic is about.
@@ -900,48 +913,4 @@ fn later_links(
         });
     }
     later
-}
-
-/// Reads one relation of a display (`prev`: the last expression before it, which a
-/// relation that starts with `=` goes on from). What cannot be read is reported as
-/// needing context; after a mass element with limits (`\int_0^R r^2\,dm`), the part
-/// from the next `=` on is read on its own.
-fn read(
-    rel: &str,
-    at: usize,
-    prev: Option<&Expr>,
-    popts: &ParseOptions,
-) -> (Vec<ChainReport>, Option<Chain>) {
-    let lead = rel.trim_start();
-    let continues = lead.starts_with(['=', '<', '>'])
-        || ["\\approx", "\\le", "\\ge", "\\neq", "\\simeq"]
-            .iter()
-            .any(|r| lead.starts_with(r));
-    let parsed = match (prev, continues) {
-        (Some(prev), true) => parse_latex_links(rel, at, popts).map(|links| Chain {
-            first: prev.clone(),
-            links,
-        }),
-        _ => parse_latex_chain(rel, at, popts),
-    };
-    let e = match parsed {
-        Ok(chain) => return (Vec::new(), Some(chain)),
-        Err(e) => e,
-    };
-    let unread = |span: Span, message: String| ChainReport {
-        span,
-        verdict: Verdict::NeedsContext,
-        diagnostics: vec![Diagnostic::error(Code::Syntax, message, span, "")],
-        assuming: Vec::new(),
-    };
-    let after = e.span.end.saturating_sub(at);
-    match extract::equals_after(rel, after) {
-        Some(eq) if e.kind == crate::syntax::error::SyntaxErrorKind::MassElementWithLimits => {
-            let mut out = vec![unread(Span::new(at, at + eq), e.message)];
-            let (more, chain) = read(&rel[eq + 1..], at + eq + 1, None, popts);
-            out.extend(more);
-            (out, chain)
-        }
-        _ => (vec![unread(e.span, e.message)], None),
-    }
 }

@@ -10,6 +10,7 @@ fn word(v: &Verdict) -> &'static str {
         Verdict::Verified => "verified",
         Verdict::Failed => "failed",
         Verdict::NeedsContext => "needs context",
+        Verdict::Defined => "defined",
     }
 }
 
@@ -18,7 +19,12 @@ pub fn human(r: &LintReport) -> (String, String) {
     let (mut out, mut err) = (String::new(), String::new());
     let idx = LineIndex::new(&r.source);
     for c in &r.chains {
-        let (line, col) = idx.line_col(c.span.start);
+        // A failed chain is reported where its mistake is (a chain may run over rows).
+        let at = match c.verdict {
+            Verdict::Failed => c.diagnostics.first().and_then(|d| d.primary.as_ref()),
+            _ => None,
+        };
+        let (line, col) = idx.line_col(at.map_or(c.span.start, |(s, _)| s.start));
         let why = c.diagnostics.first().map_or(String::new(), |d| {
             let m = d.message.as_str();
             format!(": {}", m.strip_prefix("needs context: ").unwrap_or(m))
@@ -32,6 +38,12 @@ pub fn human(r: &LintReport) -> (String, String) {
                 "{}:{line}:{col}: verified, assuming {}\n",
                 r.path,
                 c.assuming.join(" and ")
+            )),
+            // A definition is taken as the notes give it: said, never counted as checked.
+            Verdict::Defined => out.push_str(&format!(
+                "{}:{line}:{col}: defines {}\n",
+                r.path,
+                c.defines.as_deref().unwrap_or("a new symbol")
             )),
             Verdict::NeedsContext => {
                 out.push_str(&format!("{}:{line}:{col}: needs context{why}\n", r.path))
@@ -47,13 +59,14 @@ pub fn human(r: &LintReport) -> (String, String) {
     (out, err)
 }
 
-/// `chains: N, verified: V, failed: F, needs context: C`.
+/// `chains: N, verified: V, defined: D, failed: F, needs context: C`.
 pub fn summary(reports: &[LintReport]) -> String {
     let n: usize = reports.iter().map(|r| r.chains.len()).sum();
     let c = |v: Verdict| -> usize { reports.iter().map(|r| r.count(&v)).sum() };
     format!(
-        "chains: {n}, verified: {}, failed: {}, needs context: {}",
+        "chains: {n}, verified: {}, defined: {}, failed: {}, needs context: {}",
         c(Verdict::Verified),
+        c(Verdict::Defined),
         c(Verdict::Failed),
         c(Verdict::NeedsContext)
     )
@@ -77,31 +90,51 @@ pub fn json(r: &LintReport) -> String {
                 })
                 .collect();
             json!({"line": line, "column": column, "verdict": word(&c.verdict),
-                   "assuming": c.assuming, "diagnostics": diags})
+                   "assuming": c.assuming, "defines": c.defines,
+                   "reason": c.reason.map(|r| r.as_str()), "comment": c.comment,
+                   "diagnostics": diags})
         })
         .collect();
     json!({
         "path": r.path,
         "chains": chains,
         "verified": r.count(&Verdict::Verified),
+        "defined": r.count(&Verdict::Defined),
         "failed": r.count(&Verdict::Failed),
         "needs_context": r.count(&Verdict::NeedsContext),
     })
     .to_string()
 }
 
-/// GitHub annotations for failed chains.
+/// GitHub annotations: an error for each diagnostic of a failed chain, a notice for
+/// each chain that needs context (its reason, and the `rigor:` comment that would make
+/// it checkable where rigor knows it).
 pub fn github(r: &LintReport) -> String {
-    r.chains
-        .iter()
-        .filter(|c| c.verdict == Verdict::Failed)
-        .flat_map(|c| c.diagnostics.iter())
-        .fold(
-            (LineIndex::new(&r.source), String::new()),
-            |(idx, mut out), d| {
-                out.push_str(&super::github::command_in(&r.path, &idx, d));
-                (idx, out)
-            },
-        )
-        .1
+    let idx = LineIndex::new(&r.source);
+    let mut out = String::new();
+    for c in &r.chains {
+        match c.verdict {
+            Verdict::Failed => {
+                for d in &c.diagnostics {
+                    out.push_str(&super::github::command_in(&r.path, &idx, d));
+                }
+            }
+            Verdict::NeedsContext => {
+                let Some(first) = c.diagnostics.first() else {
+                    continue;
+                };
+                let mut d = first.clone();
+                d.severity = crate::diag::Severity::Note;
+                if let Some(reason) = c.reason {
+                    d.message = format!("{} [{}]", d.message, reason.as_str());
+                }
+                if let Some(comment) = &c.comment {
+                    d.notes.push(format!("to have it checked: {comment}"));
+                }
+                out.push_str(&super::github::command_in(&r.path, &idx, &d));
+            }
+            _ => {}
+        }
+    }
+    out
 }

@@ -25,7 +25,7 @@ fn notes_with_mistakes_fail_at_the_mistakes_only() {
     let (out, err, code) = lint(&["tests/lint/rod_notes.md", "tests/lint/incline_notes.tex"]);
     assert_eq!(code, 1, "{out}{err}");
     assert!(
-        out.ends_with("chains: 8, verified: 5, failed: 2, needs context: 1\n"),
+        out.ends_with("chains: 8, verified: 3, defined: 2, failed: 2, needs context: 1\n"),
         "{out}"
     );
     assert!(
@@ -103,7 +103,7 @@ fn the_lecture_notes_as_written_never_fail_and_verify_what_holds_on_its_own() {
     let (out, err, code) = lint_steadily(doc);
     assert_eq!(code, 0, "no chain of the notes is false:\n{out}{err}");
     assert!(
-        out.ends_with("\nchains: 53, verified: 15, failed: 0, needs context: 38\n"),
+        out.ends_with("\nchains: 58, verified: 12, defined: 8, failed: 0, needs context: 38\n"),
         "{out}"
     );
     let has = |at: &str, what: &str| {
@@ -208,7 +208,7 @@ fn the_lecture_notes_with_their_symbols_declared_verify_the_rolling_and_sliding_
     let out = out.replace(&doc.display().to_string(), "handout_notes_declared.md");
     assert_eq!(code, 0, "no chain of the notes is false:\n{out}{err}");
     assert!(
-        out.ends_with("\nchains: 54, verified: 16, failed: 0, needs context: 38\n"),
+        out.ends_with("\nchains: 58, verified: 14, defined: 6, failed: 0, needs context: 38\n"),
         "{out}"
     );
     let has = |at: &str, what: &str| {
@@ -241,7 +241,7 @@ fn the_lecture_notes_in_latex_never_fail_and_verify_the_same_chains() {
     let (out, err, code) = lint_steadily(doc);
     assert_eq!(code, 0, "no chain of the notes is false:\n{out}{err}");
     assert!(
-        out.ends_with("\nchains: 43, verified: 16, failed: 0, needs context: 27\n"),
+        out.ends_with("\nchains: 47, verified: 13, defined: 7, failed: 0, needs context: 27\n"),
         "{out}"
     );
     let has = |at: &str, what: &str| {
@@ -250,9 +250,13 @@ fn the_lecture_notes_in_latex_never_fail_and_verify_the_same_chains() {
     };
     // `equation` (with `\label`), `align*` (a chain a line, labels left out),
     // `equation*` and `\[ … \]`, with `%` comments between them and `$…$` in the prose
-    // never read. `M = I_O \ddot{\theta}` is a definition (M is new); the rest are checked.
+    // read in a scope of their own. `M = I_O \ddot{\theta}` is a definition (M is new),
+    // reported as one; the rest are checked.
+    has(
+        &place(&text, "M = I_O \\ddot{\\theta} \\label", "M"),
+        "defines M",
+    );
     for (needle, part) in [
-        ("M = I_O \\ddot{\\theta} \\label", "M"),
         ("= \\int \\left((x+a)^2", "\\int"),
         ("I_G &= \\int_{-L/2}^{L/2}", "I_G"),
         ("I_O &= \\frac{mL^2}{12}", "I_O"),
@@ -321,7 +325,7 @@ fn the_centre_of_percussion_follows_only_where_the_blow_is_declared_nonzero() {
         );
     }
     assert!(
-        out.ends_with("chains: 11, verified: 2, failed: 0, needs context: 9\n"),
+        out.ends_with("chains: 11, verified: 1, defined: 1, failed: 0, needs context: 9\n"),
         "{out}"
     );
     insta::assert_snapshot!(format!("{out}\n{err}"));
@@ -339,12 +343,12 @@ fn headings_scope_what_the_notes_state_and_labels_and_arrows_split_relations() {
     // `\ddot{y}_B` is the acceleration of y_B, found from the stated theta''.
     assert!(out.contains("scopes_notes.md:25:3: verified"), "{out}");
     // R is defined afresh under the second heading: not a contradiction of R = 2mg.
-    assert!(out.contains("scopes_notes.md:27:3: verified"), "{out}");
-    // The one slip fails, at its link.
-    assert!(out.contains("scopes_notes.md:31:3: FAILED"), "{out}");
+    assert!(out.contains("scopes_notes.md:27:3: defines R"), "{out}");
+    // The one slip fails, reported at its link.
+    assert!(out.contains("scopes_notes.md:31:83: FAILED"), "{out}");
     assert!(err.contains("31:83"), "{err}");
     assert!(
-        out.ends_with("chains: 13, verified: 8, failed: 1, needs context: 4\n"),
+        out.ends_with("chains: 13, verified: 6, defined: 2, failed: 1, needs context: 4\n"),
         "{out}"
     );
     insta::assert_snapshot!(format!("{out}\n{err}"));

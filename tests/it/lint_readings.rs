@@ -9,8 +9,8 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::Command;
 
-/// Each chain's line and verdict (`verified`, `FAILED`, `needs context`), and the exit
-/// status of `rigor lint` on the note.
+/// Each chain's line and verdict (`verified`, `FAILED`, `needs context`, `defines`), and
+/// the exit status of `rigor lint` on the note.
 fn verdicts(note: &str) -> (BTreeMap<usize, String>, i32, String) {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let out = Command::new(env!("CARGO_BIN_EXE_rigor"))
@@ -30,7 +30,7 @@ fn verdicts(note: &str) -> (BTreeMap<usize, String>, i32, String) {
             continue;
         };
         let verdict = verdict.trim_start();
-        let kind = ["verified", "FAILED", "needs context"]
+        let kind = ["verified", "FAILED", "needs context", "defines"]
             .into_iter()
             .find(|k| verdict.starts_with(k))
             .unwrap_or("?");
@@ -60,7 +60,7 @@ fn leibniz_notation_is_a_derivative_never_a_product() {
         "tests/lint/readings_leibniz.md",
         &[
             // F = m dv/dt defines F; F t = m v does not follow (d does not cancel).
-            (5, "verified"),
+            (5, "defines"),
             (7, "needs context"),
             // dx/dt = x/t and the \mathrm{d} form: a velocity is not x/t.
             (11, "needs context"),
@@ -106,7 +106,7 @@ fn a_function_takes_the_factors_juxtaposed_after_it() {
 fn times_between_quantities_is_a_cross_product_and_needs_context() {
     expect(
         "tests/lint/readings_cross.md",
-        &[(5, "needs context"), (9, "verified"), (11, "verified")],
+        &[(5, "needs context"), (9, "verified"), (11, "defines")],
         0,
     );
 }

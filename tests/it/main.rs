@@ -15,6 +15,7 @@ mod hostile;
 mod latex_readings;
 mod library;
 mod lint;
+mod lint_display;
 mod lint_readings;
 mod mark;
 mod normal;

@@ -87,6 +87,17 @@ pub fn parse_latex_links(
     Ok(links)
 }
 
+/// The macros whose braced argument is upright text: in a subscript, part of the name.
+const UPRIGHT: [&str; 7] = [
+    "mathrm",
+    "text",
+    "textrm",
+    "operatorname",
+    "mathit",
+    "mathsf",
+    "textit",
+];
+
 struct P {
     toks: Vec<(Tok, Span)>,
     pos: usize,
@@ -553,6 +564,11 @@ impl P {
             }
         };
         if !self.eat_ch('{') {
+            // `K_\mathrm{rot}`: the macro's braced text is the subscript.
+            if UPRIGHT.iter().any(|c| self.is_cmd(c)) && self.peek_at(1) == Some(&Tok::Ch('{')) {
+                self.pos += 1;
+                return self.subscript();
+            }
             let t = self.peek().cloned();
             let s = t
                 .as_ref()
@@ -562,15 +578,25 @@ impl P {
             return Ok(s);
         }
         let mut parts = String::new();
+        // Braces inside the subscript (`_{\text{CM}}`) close before it does.
+        let mut level = 1usize;
         loop {
             if self.eat_ch('}') {
-                return Ok(parts);
+                level -= 1;
+                if level == 0 {
+                    return Ok(parts);
+                }
+                continue;
             }
-            if self.is_cmd("mathrm") || self.is_cmd("text") || self.is_cmd("textrm") {
+            if UPRIGHT.iter().any(|c| self.is_cmd(c)) {
                 self.pos += 1;
                 continue;
             }
-            if self.eat_ch('{') || self.eat_ch(',') {
+            if self.eat_ch('{') {
+                level += 1;
+                continue;
+            }
+            if self.eat_ch(',') {
                 continue;
             }
             let t = self.peek().cloned();
@@ -632,6 +658,10 @@ impl P {
                 Ok(node(ExprKind::Sym(format!("{name}{primes}")), span))
             }
             "mathrm" | "text" | "textrm" | "operatorname" | "mathit" => self.upright(span),
+            "vec" | "hat" | "mathbf" | "boldsymbol" | "bm" | "overrightarrow" => Err(SyntaxError::new(
+                span,
+                format!("`\\{c}` marks a vector (or a unit vector): rigor reads scalar equations, so its components must be written out"),
+            )),
             f => match FUNCS.iter().find(|x| x.0 == f) {
                 Some((_, func)) => self.function(*func, span),
                 None => Err(SyntaxError::new(
@@ -736,7 +766,8 @@ impl P {
                 )
             })?,
         };
-        let span = f.span.to(hi.span);
+        // To the last token read: the closing brace of `^{L}` too.
+        let span = f.span.to(self.last_span());
         let v = node(ExprKind::Sym(var), lo.span);
         Ok(node(ExprKind::Call(Func::Eval, vec![f, v, lo, hi]), span))
     }

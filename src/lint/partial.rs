@@ -1,0 +1,81 @@
+//! The parts of a chain that needs context which hold on their own, reported as chains
+//! of their own: the links from its start up to the first that does not hold (with
+//! nothing assumed), and from its last failing link to its end.
+
+use super::{part_outcome, ChainReport, Placed, Verdict};
+use crate::check::{FileReport, Status};
+use crate::syntax::ast::Span;
+use std::collections::HashSet;
+
+/// The links of a chain that needs context, from the last that does not hold on: a
+/// chain of their own when they all hold (`dm = m dA/A = m 2 pi r dr/(pi R^2) = 2 m r
+/// dr/R^2`: the last link is algebra, and verified).
+pub(super) fn verified_tail(checked: &FileReport, p: &Placed) -> Option<ChainReport> {
+    let (statuses, _) = part_outcome(checked, p.rest.as_ref()?, p.span);
+    if statuses.len() != p.later.len() {
+        return None;
+    }
+    let j = statuses.iter().rposition(|s| !s.is_verified())?;
+    let from = p.later.get(j)?.rhs;
+    (j + 1 < statuses.len()).then(|| ChainReport {
+        span: Span::new(from, p.span.end),
+        verdict: Verdict::Verified,
+        diagnostics: Vec::new(),
+        assuming: once(conditions(statuses.get(j + 1..).unwrap_or_default())),
+        defines: None,
+        reason: None,
+        comment: None,
+    })
+}
+
+/// The side conditions verified links assume.
+pub(super) fn conditions(statuses: &[Status]) -> Vec<String> {
+    statuses
+        .iter()
+        .flat_map(|s| match s {
+            Status::Verified {
+                side_conditions, ..
+            } => side_conditions.clone(),
+            _ => Vec::new(),
+        })
+        .collect()
+}
+
+/// Each string once, in first-seen order.
+pub(super) fn once(v: Vec<String>) -> Vec<String> {
+    let mut seen = HashSet::new();
+    v.into_iter().filter(|c| seen.insert(c.clone())).collect()
+}
+
+/// The links of a chain that needs context, from the first up to the first that does
+/// not hold, when the first is a step that holds (not only a relation the notes state):
+/// a chain of their own, and where the rest of the chain starts (`a b = I_G/m = k_G^2`:
+/// the first link follows from the relation before it; the second brings in `k_G`).
+/// Only links that hold with nothing assumed count: a head verified assuming a divisor
+/// nonzero (`dm = m dA/A`, read as products, needs `A != 0`) stays with the chain.
+pub(super) fn verified_head(checked: &FileReport, p: &Placed) -> Option<(ChainReport, usize)> {
+    let settled = |s: &Status| matches!(s, Status::Verified { side_conditions, .. } if side_conditions.is_empty());
+    let (first, _) = part_outcome(checked, p.first.as_ref()?, p.span);
+    if first.is_empty() || !first.iter().all(settled) {
+        return None;
+    }
+    let (statuses, _) = part_outcome(checked, p.rest.as_ref()?, p.span);
+    if statuses.len() != p.later.len() {
+        return None;
+    }
+    let k = statuses.iter().position(|s| !settled(s))?;
+    let (end, from) = match k.checked_sub(1) {
+        None => (p.first_link.end, p.first_link.start),
+        Some(i) => (p.later.get(i)?.span.end, p.later.get(i)?.rhs),
+    };
+    let head = ChainReport {
+        span: Span::new(p.span.start, end),
+        verdict: Verdict::Verified,
+        diagnostics: Vec::new(),
+        assuming: Vec::new(),
+        defines: None,
+        reason: None,
+        comment: None,
+    };
+    Some((head, from))
+}
