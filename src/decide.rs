@@ -161,7 +161,7 @@ fn decide_with(
     }
     // Related angles, large powers kept factored, products of abs and roots.
     let d = crate::normal::settle(&d, s);
-    if d.is_zero() {
+    if d.is_zero() || zero_where_defined(&d, s, defined) {
         return Verdict::Equal;
     }
     // Square roots of integers that share a factor (sqrt(p) sqrt(q) against sqrt(p q),
@@ -215,6 +215,68 @@ fn decide_with(
         exact,
         counterexample,
     }
+}
+
+/// Whether `d` is zero wherever the conditions `defined` hold (each `ln`'s argument
+/// positive, divisors nonzero, radicands nonnegative: where the sides are defined), by
+/// merging logarithms whose arguments those conditions make positive, all on one set
+/// ([`positive_where`](crate::normal::merge::positive_where)): the sides must be
+/// defined alike, so `ln(x y) = ln(x) + ln(y)` (the left side also for x, y < 0) stays
+/// unverified with no signs declared. Every `ln` atom
+/// of a normal form has an argument that is positive wherever the `ln` it came from is
+/// defined ([`func::ln`](crate::normal::func::ln) splits off only positive factors), so
+/// the atoms of `ln(c)` for a condition `c > 0` are covered. `ln(1/x) = -ln(x)` is then
+/// equal under the condition x > 0, as `x/x = 1` is under x != 0. A logarithm of an
+/// `abs` is not covered: `ln((x + 1)^2) = 2 ln(x + 1)` drops the absolute value of
+/// `2 ln(abs(x + 1))`, the classic slip, and stays unverified although it holds for
+/// x > -1.
+pub fn zero_where_defined(d: &Rat, s: &Assumptions, defined: &[(Rat, Need)]) -> bool {
+    let has_ln = |r: &Rat| {
+        r.atoms()
+            .into_iter()
+            .any(|a| matches!(&*atom::get(a), Atom::Ln(_)))
+    };
+    if d.is_zero() || !has_ln(d) {
+        return d.is_zero();
+    }
+    let mut covered: Vec<AtomId> = Vec::new();
+    for (c, need) in defined {
+        if *need != Need::Positive {
+            continue;
+        }
+        if let Ok(l) = crate::normal::func::ln(c, s) {
+            covered.extend(l.atoms().into_iter().filter(|a| {
+                match &*atom::get(*a) {
+                    Atom::Ln(u) => !u
+                        .atoms()
+                        .into_iter()
+                        .any(|b| matches!(&*atom::get(b), Atom::Abs(_))),
+                    _ => false,
+                }
+            }));
+        }
+    }
+    if covered.is_empty() {
+        return false;
+    }
+    // The logarithms merged must be defined on one set: `ln(1/x) + ln(x)` (both for
+    // x > 0), not `ln(x y) - ln(x) - ln(y)` (the first also for x, y < 0).
+    let may_merge = |us: &[&Rat]| {
+        let mut domain = None;
+        us.iter().all(|u| {
+            if s.rat(u) == Sign::Pos {
+                return true;
+            }
+            if !covered.contains(&atom::intern(Atom::Ln((*u).clone()))) {
+                return false;
+            }
+            let Some(p) = crate::normal::merge::positive_where(u, s) else {
+                return false;
+            };
+            domain.get_or_insert_with(|| p.clone()) == &p
+        })
+    };
+    crate::normal::merge::merged_logs_with(d, s, &may_merge).is_some_and(|m| m.is_zero())
 }
 
 /// `d` with square roots of positive integers rewritten over a coprime basis of their
@@ -571,9 +633,14 @@ pub fn find_counterexample_where(
     s: &Assumptions,
     defined: &[(Rat, Need)],
 ) -> Option<Counterexample> {
+    // Every symbol of the written sides gets a value, also one that cancelled from
+    // both normal forms but stays in a condition (`m g/(m + 2/5 m)`: `m != 0`).
     let mut syms = Vec::new();
     symbols_in(a, &mut syms);
     symbols_in(b, &mut syms);
+    for (c, _) in defined {
+        symbols_in(c, &mut syms);
+    }
     syms.sort_by(|x, y| atom::cmp_atoms(*x, *y));
     // The first point where the sides differ, kept while a better one is looked for:
     // one where they differ by more than a millionth of their size, which the guard's
