@@ -219,17 +219,18 @@ fn decide_with(
 
 /// Whether `d` is zero wherever the conditions `defined` hold (each `ln`'s argument
 /// positive, divisors nonzero, radicands nonnegative: where the sides are defined), by
-/// merging logarithms whose arguments those conditions make positive, all on one set
-/// ([`positive_where`](crate::normal::merge::positive_where)): the sides must be
-/// defined alike, so `ln(x y) = ln(x) + ln(y)` (the left side also for x, y < 0) stays
-/// unverified with no signs declared. Every `ln` atom
-/// of a normal form has an argument that is positive wherever the `ln` it came from is
-/// defined ([`func::ln`](crate::normal::func::ln) splits off only positive factors), so
-/// the atoms of `ln(c)` for a condition `c > 0` are covered. `ln(1/x) = -ln(x)` is then
-/// equal under the condition x > 0, as `x/x = 1` is under x != 0. A logarithm of an
-/// `abs` is not covered: `ln((x + 1)^2) = 2 ln(x + 1)` drops the absolute value of
-/// `2 ln(abs(x + 1))`, the classic slip, and stays unverified although it holds for
-/// x > -1.
+/// merging logarithms that those conditions make defined, all on one set. Every `ln`
+/// atom of a normal form has an argument that is positive wherever the `ln` it came
+/// from is defined ([`func::ln`](crate::normal::func::ln) splits off only positive
+/// factors and even powers), so the atoms of `ln(c)` are positive where `c > 0`; and
+/// where `c > 0` exactly when `K > 0` for one quantity `K`
+/// ([`positive_where`](crate::normal::merge::positive_where): `1/x`, `x^3` and `x` give
+/// `x`), logarithms covered by conditions of one `K` may merge. `ln(1/x) = -ln(x)` and
+/// `ln(x^3) = 3 ln(x)` are then equal under the condition x > 0, as `x/x = 1` is under
+/// x != 0. Sides defined on different sets stay unverified: `ln(x y) = ln(x) + ln(y)`
+/// (`x y > 0` has no such `K`: the left side is defined for x, y < 0 too), and
+/// `ln((x + 1)^2) = 2 ln(x + 1)`, which drops the absolute value of
+/// `2 ln(abs(x + 1))`, the classic slip.
 pub fn zero_where_defined(d: &Rat, s: &Assumptions, defined: &[(Rat, Need)]) -> bool {
     let has_ln = |r: &Rat| {
         r.atoms()
@@ -239,41 +240,41 @@ pub fn zero_where_defined(d: &Rat, s: &Assumptions, defined: &[(Rat, Need)]) -> 
     if d.is_zero() || !has_ln(d) {
         return d.is_zero();
     }
-    let mut covered: Vec<AtomId> = Vec::new();
+    // Each logarithm the conditions cover, with the `K` of a condition that covers it.
+    let mut covered: Vec<(AtomId, Poly)> = Vec::new();
     for (c, need) in defined {
         if *need != Need::Positive {
             continue;
         }
-        if let Ok(l) = crate::normal::func::ln(c, s) {
-            covered.extend(l.atoms().into_iter().filter(|a| {
-                match &*atom::get(*a) {
-                    Atom::Ln(u) => !u
-                        .atoms()
-                        .into_iter()
-                        .any(|b| matches!(&*atom::get(b), Atom::Abs(_))),
-                    _ => false,
-                }
-            }));
+        let (Some(k), Ok(l)) = (
+            crate::normal::merge::positive_where(c, s),
+            crate::normal::func::ln(c, s),
+        ) else {
+            continue;
+        };
+        for a in l.atoms() {
+            if matches!(&*atom::get(a), Atom::Ln(_)) {
+                covered.push((a, k.clone()));
+            }
         }
     }
     if covered.is_empty() {
         return false;
     }
-    // The logarithms merged must be defined on one set: `ln(1/x) + ln(x)` (both for
-    // x > 0), not `ln(x y) - ln(x) - ln(y)` (the first also for x, y < 0).
+    // Logarithms merge when the signs show their arguments positive, or conditions of
+    // one `K` cover them all.
     let may_merge = |us: &[&Rat]| {
-        let mut domain = None;
-        us.iter().all(|u| {
-            if s.rat(u) == Sign::Pos {
-                return true;
-            }
-            if !covered.contains(&atom::intern(Atom::Ln((*u).clone()))) {
-                return false;
-            }
-            let Some(p) = crate::normal::merge::positive_where(u, s) else {
-                return false;
-            };
-            domain.get_or_insert_with(|| p.clone()) == &p
+        let ids: Vec<AtomId> = us
+            .iter()
+            .filter(|u| s.rat(u) != Sign::Pos)
+            .map(|u| atom::intern(Atom::Ln((*u).clone())))
+            .collect();
+        let Some(first) = ids.first() else {
+            return true;
+        };
+        covered.iter().filter(|(a, _)| a == first).any(|(_, k)| {
+            ids.iter()
+                .all(|id| covered.iter().any(|(a, k2)| a == id && k2 == k))
         })
     };
     crate::normal::merge::merged_logs_with(d, s, &may_merge).is_some_and(|m| m.is_zero())

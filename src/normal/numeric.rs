@@ -37,9 +37,7 @@ pub fn sign(p: &Poly) -> Option<Sign> {
             prec: Prec { bits },
             memo: HashMap::new(),
         };
-        let Some(v) = e.poly(p) else {
-            return None;
-        };
+        let v = e.poly(p)?;
         if v.is_positive() {
             return Some(Sign::Pos);
         }
