@@ -234,3 +234,53 @@ fn conjugate(u: &Rat, n: &Q, s: &Assumptions) -> Result<Option<Rat>, NormError> 
     let factor = root(&n, 2, s)?.mul(u)?.div(&n)?;
     Ok(Some(factor.mul(&sqrt(&v, s)?)?))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn root_of(n: i64) -> Rat {
+        sqrt(&Rat::int(n), &Assumptions::default()).unwrap()
+    }
+
+    fn sum(terms: &[(i64, Rat)]) -> Rat {
+        terms.iter().fold(Rat::zero(), |acc, (k, r)| {
+            acc.add(&r.scale(&Q::from_integer(BigInt::from(*k))))
+                .unwrap()
+        })
+    }
+
+    #[test]
+    fn several_surds_denest_into_their_value() {
+        let s = Assumptions::default();
+        // sqrt(33 - 4√14 - 2√6 + 4√21) = -√2 + √3 + 2√7.
+        let u = sum(&[
+            (33, Rat::one()),
+            (-4, root_of(14)),
+            (-2, root_of(6)),
+            (4, root_of(21)),
+        ]);
+        let r = sum(&[(-1, root_of(2)), (1, root_of(3)), (2, root_of(7))]);
+        assert_eq!(sqrt(&u, &s).unwrap(), r);
+        // A nested root squared: sqrt((1 + sqrt(1 + √3))^2) = 1 + sqrt(1 + √3).
+        let inner = sqrt(&Rat::one().add(&root_of(3)).unwrap(), &s).unwrap();
+        let v = Rat::one().add(&inner).unwrap();
+        assert_eq!(sqrt(&v.mul(&v).unwrap(), &s).unwrap(), v);
+    }
+
+    #[test]
+    fn only_an_answer_that_squares_back_is_used() {
+        let s = Assumptions::default();
+        // sqrt(1 + √3) does not denest: it stays one atom.
+        let r = sqrt(&Rat::one().add(&root_of(3)).unwrap(), &s).unwrap();
+        assert!(r.as_atom().is_some());
+        // 1 + √2 squares to 3 + 2√2, not 4 + 2√2: not its root.
+        let u = sum(&[(4, Rat::one()), (2, root_of(2))]);
+        let wrong = Rat::one().add(&root_of(2)).unwrap();
+        assert!(!checks(&wrong, &u, 1, &s));
+        let right = sum(&[(3, Rat::one()), (2, root_of(2))]);
+        assert!(checks(&wrong, &right, 1, &s));
+        // A negative candidate never is: -(1 + √2) squares to 3 + 2√2 too.
+        assert!(!checks(&wrong.neg(), &right, 1, &s));
+    }
+}
