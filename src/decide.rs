@@ -174,7 +174,7 @@ fn decide_with(
     }
     // Related angles, large powers kept factored, products of abs and roots.
     let d = crate::normal::settle(&d, s);
-    if d.is_zero() {
+    if d.is_zero() || zero_where_defined(&d, s, defined) {
         return Verdict::Equal;
     }
     // Square roots of integers that share a factor (sqrt(p) sqrt(q) against sqrt(p q),
@@ -228,6 +228,69 @@ fn decide_with(
         exact,
         counterexample,
     }
+}
+
+/// Whether `d` is zero wherever the conditions `defined` hold (each `ln`'s argument
+/// positive, divisors nonzero, radicands nonnegative: where the sides are defined), by
+/// merging logarithms that those conditions make defined, all on one set. Every `ln`
+/// atom of a normal form has an argument that is positive wherever the `ln` it came
+/// from is defined (`func::ln` splits off only positive
+/// factors and even powers), so the atoms of `ln(c)` are positive where `c > 0`; and
+/// where `c > 0` exactly when `K > 0` for one quantity `K`
+/// (`positive_where`: `1/x`, `x^3` and `x` give
+/// `x`), logarithms covered by conditions of one `K` may merge. `ln(1/x) = -ln(x)` and
+/// `ln(x^3) = 3 ln(x)` are then equal under the condition x > 0, as `x/x = 1` is under
+/// x != 0. Sides defined on different sets stay unverified: `ln(x y) = ln(x) + ln(y)`
+/// (`x y > 0` has no such `K`: the left side is defined for x, y < 0 too), and
+/// `ln((x + 1)^2) = 2 ln(x + 1)`, which drops the absolute value of
+/// `2 ln(abs(x + 1))`, the classic slip.
+pub fn zero_where_defined(d: &Rat, s: &Assumptions, defined: &[(Rat, Need)]) -> bool {
+    let has_ln = |r: &Rat| {
+        r.atoms()
+            .into_iter()
+            .any(|a| matches!(&*atom::get(a), Atom::Ln(_)))
+    };
+    if d.is_zero() || !has_ln(d) {
+        return d.is_zero();
+    }
+    // Each logarithm the conditions cover, with the `K` of a condition that covers it.
+    let mut covered: Vec<(AtomId, Poly)> = Vec::new();
+    for (c, need) in defined {
+        if *need != Need::Positive {
+            continue;
+        }
+        let (Some(k), Ok(l)) = (
+            crate::normal::merge::positive_where(c, s),
+            crate::normal::func::ln(c, s),
+        ) else {
+            continue;
+        };
+        for a in l.atoms() {
+            if matches!(&*atom::get(a), Atom::Ln(_)) {
+                covered.push((a, k.clone()));
+            }
+        }
+    }
+    if covered.is_empty() {
+        return false;
+    }
+    // Logarithms merge when the signs show their arguments positive, or conditions of
+    // one `K` cover them all.
+    let may_merge = |us: &[&Rat]| {
+        let ids: Vec<AtomId> = us
+            .iter()
+            .filter(|u| s.rat(u) != Sign::Pos)
+            .map(|u| atom::intern(Atom::Ln((*u).clone())))
+            .collect();
+        let Some(first) = ids.first() else {
+            return true;
+        };
+        covered.iter().filter(|(a, _)| a == first).any(|(_, k)| {
+            ids.iter()
+                .all(|id| covered.iter().any(|(a, k2)| a == id && k2 == k))
+        })
+    };
+    crate::normal::merge::merged_logs_with(d, s, &may_merge).is_some_and(|m| m.is_zero())
 }
 
 /// `d` with square roots of positive integers rewritten over a coprime basis of their
@@ -584,9 +647,14 @@ pub fn find_counterexample_where(
     s: &Assumptions,
     defined: &[(Rat, Need)],
 ) -> Option<Counterexample> {
+    // Every symbol of the written sides gets a value, also one that cancelled from
+    // both normal forms but stays in a condition (`m g/(m + 2/5 m)`: `m != 0`).
     let mut syms = Vec::new();
     symbols_in(a, &mut syms);
     symbols_in(b, &mut syms);
+    for (c, _) in defined {
+        symbols_in(c, &mut syms);
+    }
     syms.sort_by(|x, y| atom::cmp_atoms(*x, *y));
     // The first point where the sides differ, kept while a better one is looked for:
     // one where they differ by more than a millionth of their size, which the guard's

@@ -136,6 +136,13 @@ impl Checker<'_, '_> {
         };
         // Related angles, large powers kept factored, products of abs and roots.
         let diff = crate::normal::settle(&a.sub(&b).map_err(e0101(span))?, &self.env.signs);
+        // Logarithms merged where the sides are defined (`ln(1/x) = -ln(x)` for x > 0):
+        // zero under the side conditions, which the verdict then states.
+        let diff = if crate::decide::zero_where_defined(&diff, &self.env.signs, input.divisors) {
+            Rat::zero()
+        } else {
+            diff
+        };
         // `by [..]` must name facts before this line, even where none is needed.
         if input.restricted() {
             match self.facts_for(input.by(), span) {

@@ -56,55 +56,10 @@ fn q_of(n: BigUint) -> Q {
 
 /// The principal square root.
 pub fn sqrt(u: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
-    if let Some(r) = denest(u, s)? {
+    if let Some(r) = super::denest::denest(u, s)? {
         return Ok(r);
     }
     root(u, 2, s)
-}
-
-/// `sqrt(a + b·√c)` for rationals `a > 0`, `b ≠ 0` and a square-free integer `c`, when
-/// `a² − b²c` is the square of a rational `d`: then it is exactly
-/// `sqrt((a + d)/2) + sign(b)·sqrt((a − d)/2)` (square both sides), so that
-/// `sqrt(3 + 2 sqrt(2))` and `1 + sqrt(2)` have one normal form.
-fn denest(u: &Rat, s: &Assumptions) -> Result<Option<Rat>, NormError> {
-    if !u.den().is_one() {
-        return Ok(None);
-    }
-    let [(m0, a), (m1, b)] = u.num().terms() else {
-        return Ok(None);
-    };
-    if !m0.is_one() || !a.is_positive() {
-        return Ok(None);
-    }
-    // √c as a product of square roots of distinct integers, each to the first power.
-    let mut c = BigInt::one();
-    for &(x, e) in m1.pairs() {
-        let at = atom::get(x);
-        let Atom::Sqrt(p) = &*at else {
-            return Ok(None);
-        };
-        match p.as_constant() {
-            Some(q) if e == 1 && q.is_integer() && q.is_positive() => c *= q.numer(),
-            _ => return Ok(None),
-        }
-    }
-    let d2 = a * a - b * b * Q::from_integer(c);
-    if d2.is_negative() {
-        return Ok(None);
-    }
-    let (rn, rd) = (d2.numer().sqrt(), d2.denom().sqrt());
-    if &rn * &rn != *d2.numer() || &rd * &rd != *d2.denom() {
-        return Ok(None);
-    }
-    let d = Q::new(rn, rd);
-    let two = Q::from_integer(BigInt::from(2));
-    let hi = root(&Rat::constant((a + &d) / &two), 2, s)?;
-    let lo = root(&Rat::constant((a - &d) / &two), 2, s)?;
-    Ok(Some(if b.is_positive() {
-        hi.add(&lo)?
-    } else {
-        hi.sub(&lo)?
-    }))
 }
 
 /// The principal `n`-th root (`n ≥ 2`); negative radicands only for odd `n`.

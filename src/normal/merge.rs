@@ -153,6 +153,20 @@ fn merged_poly(p: &Poly, s: &Assumptions) -> Result<(Rat, bool), NormError> {
 /// `ln`, so `ln(a + 1) + ln(a + 5c)` meets `ln(a² + 5ac + a + 5c)`. The numerator alone
 /// decides whether a difference is zero. `None` when nothing merges.
 pub fn merged_logs(r: &Rat, s: &Assumptions) -> Option<Rat> {
+    merged_logs_with(r, s, &|us: &[&Rat]| {
+        us.iter().all(|u| s.rat(u) == super::Sign::Pos)
+    })
+}
+
+/// [`merged_logs`] with `may_merge` saying which logarithms (by their arguments) may be
+/// merged: those the signs show positive (as there), or, for a caller that states where
+/// the sides are defined, arguments positive on one and the same set (`ln(1/x) + ln(x)`
+/// is `ln(1) = 0` wherever both are defined, that is for x > 0).
+pub fn merged_logs_with(
+    r: &Rat,
+    s: &Assumptions,
+    may_merge: &dyn Fn(&[&Rat]) -> bool,
+) -> Option<Rat> {
     use num_integer::Integer;
     use num_traits::ToPrimitive;
     // By cofactor (the term's monomial without its logarithm): each term with its `ln`'s
@@ -185,7 +199,8 @@ pub fn merged_logs(r: &Rat, s: &Assumptions) -> Option<Rat> {
     for (key, items) in groups {
         // ln(u) + ln(v) = ln(u v) only where u, v > 0: the signs must show it (as for
         // roots, the right side is defined for u, v < 0 too). Otherwise the terms stay.
-        let merge = items.len() >= 2 && items.iter().all(|(_, _, u)| s.rat(u) == super::Sign::Pos);
+        let args: Vec<&Rat> = items.iter().map(|(_, _, u)| u).collect();
+        let merge = items.len() >= 2 && may_merge(&args);
         if !merge {
             others.extend(items.into_iter().map(|(m, q, _)| (m, q)));
             continue;
@@ -217,6 +232,65 @@ pub fn merged_logs(r: &Rat, s: &Assumptions) -> Option<Rat> {
         total = total.add(m).ok()?;
     }
     Some(total)
+}
+
+/// The one quantity `p` with `u > 0` exactly where `p > 0`, when `u` is, up to factors
+/// the signs show positive and a constant, one factor of unknown sign to an odd power
+/// (`1/x` and `x` give `x`, `sqrt(x)` gives `x`, `-(a + 1)` gives `-a - 1`); `None` for
+/// anything else (`x y`, `x^2`, `abs(x)`). Two logarithms whose arguments give the same
+/// `p` are defined on the same set.
+pub fn positive_where(u: &Rat, s: &Assumptions) -> Option<Poly> {
+    use num_traits::Signed;
+    let mut found: Option<Poly> = None;
+    let mut negative = false;
+    let take = |f: Poly, found: &mut Option<Poly>| -> Option<()> {
+        match found {
+            Some(_) => None,
+            None => {
+                *found = Some(f);
+                Some(())
+            }
+        }
+    };
+    for p in [u.num(), u.den()] {
+        if p.is_one() {
+            continue;
+        }
+        // The content is positive: the sign stays with the terms.
+        let prim = p.scale(&p.content().recip());
+        let mc = prim.mono_content();
+        let mut rest = prim.div_mono(&mc).unwrap_or(prim.clone());
+        for &(a, e) in mc.pairs() {
+            if s.atom(a) == super::Sign::Pos {
+                continue;
+            }
+            if e % 2 == 0 {
+                return None;
+            }
+            let f = match &*atom::get(a) {
+                Atom::Sqrt(q) | Atom::Root(q, _) => q.clone(),
+                Atom::Abs(_) => return None,
+                _ => Poly::atom(a),
+            };
+            take(f, &mut found)?;
+        }
+        if rest.is_one() || s.poly(&rest) == super::Sign::Pos {
+            continue;
+        }
+        if rest.lead().is_some_and(|t| t.1.is_negative()) {
+            negative = !negative;
+            rest = rest.neg();
+        }
+        if rest.is_one() {
+            continue;
+        }
+        match super::gcd::squarefree(&rest).ok()?.as_slice() {
+            [(f, 1)] => take(f.clone(), &mut found)?,
+            _ => return None,
+        }
+    }
+    let f = found?;
+    Some(if negative { f.neg() } else { f })
 }
 
 #[cfg(test)]

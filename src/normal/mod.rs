@@ -4,11 +4,14 @@
 //! into these values and reports errors with spans.
 
 pub mod atom;
+pub(crate) mod bases;
+pub(crate) mod denest;
 pub(crate) mod func;
 pub mod gcd;
 pub mod limits;
 pub(crate) mod merge;
 pub mod mono;
+pub(crate) mod numeric;
 pub mod pack;
 pub(crate) mod poly;
 pub(crate) mod power;
@@ -31,8 +34,9 @@ use std::fmt;
 
 /// A difference `d` (zero when a step holds) looked at again where its normal form is
 /// not canonical: zero when sines and cosines of related angles, large powers kept
-/// factored (`power::settle`) or products of `abs` and roots (`merge::merged`) show
-/// it zero; otherwise `d`, with kept factors written out where that is affordable.
+/// factored (`power::settle`), products of `abs` and roots (`merge::merged`) or roots
+/// of one base over a common index (`bases::common_index`) show it zero; otherwise `d`,
+/// with kept factors written out where that is affordable.
 pub fn settle(d: &Rat, s: &Assumptions) -> Rat {
     if d.is_zero() {
         return Rat::zero();
@@ -58,6 +62,12 @@ pub fn settle(d: &Rat, s: &Assumptions) -> Rat {
     };
     if d.is_zero() || merged_zero(&d) || rebased.as_ref().is_some_and(merged_zero) {
         return Rat::zero();
+    }
+    // Roots of one base with different indices (`2^(3/4)`, `sqrt(2) 2^(1/4)`).
+    if let Some(b) = bases::common_index(&d, s) {
+        if b.is_zero() || merged_zero(&b) {
+            return Rat::zero();
+        }
     }
     d
 }

@@ -1,7 +1,8 @@
 //! Signs that a declared interval fixes: `sin`, `cos` (and so `tan`) of `c·β + d` for a
 //! symbol `β` declared in an interval whose bounds are numbers or rational multiples of
 //! `π` (`symbols 0 < beta < pi/2` makes `sin(beta)`, `cos(beta)`, `sin(2 beta)` positive
-//! and `cos(pi - beta)` negative).
+//! and `cos(pi - beta)` negative), or symbols declared in intervals of their own
+//! (`0 < del < gam` with `0 < gam < pi/2` makes `sin(del)` positive).
 
 use super::atom::{self, Atom, AtomId};
 use super::poly::Q;
@@ -48,6 +49,31 @@ fn linear(u: &Rat) -> Option<(AtomId, Q, Q, Q)> {
     Some((sym?, c, p, q))
 }
 
+/// How many symbols deep a bound is followed (`0 < del < gam`, `0 < gam < pi/2`).
+const BOUND_DEPTH: u32 = 4;
+
+/// A bound of a declared interval as `p + q·π`: itself when it is one, else, for a
+/// bound that is a symbol declared in an interval of its own, that interval's upper
+/// (for `upper`) or lower end, followed up to `depth` symbols. With whether the end is
+/// reached only strictly through a symbol (`del < gam < pi/2` gives `del < pi/2`).
+fn bound(s: &Assumptions, r: &Rat, upper: bool, depth: u32) -> Option<((Q, Q), bool)> {
+    if let Some(pq) = pi_form(r) {
+        return Some((pq, false));
+    }
+    let a = r.as_atom().filter(|a| atom::sym_name(*a).is_some())?;
+    if depth == 0 {
+        return None;
+    }
+    let range = s.range(a)?;
+    let (next, strict) = if upper {
+        (&range.hi, range.hi_strict)
+    } else {
+        (&range.lo, range.lo_strict)
+    };
+    let (pq, wider) = bound(s, next, upper, depth - 1)?;
+    Some((pq, strict || wider))
+}
+
 /// `(p + q·π)/π` as an enclosure, exact when `p = 0`.
 fn in_pi_units(p: &Q, q: &Q) -> Option<Interval> {
     if p.is_zero() {
@@ -75,10 +101,13 @@ fn trig_sign_opt(s: &Assumptions, u: &Rat, cos: bool) -> Option<Sign> {
         None => {
             let (b, c, p, q) = linear(u)?;
             let r = s.range(b)?;
-            let (lp, lq) = pi_form(&r.lo)?;
-            let (hp, hq) = pi_form(&r.hi)?;
+            let ((lp, lq), lo_wider) = bound(s, &r.lo, false, BOUND_DEPTH)?;
+            let ((hp, hq), hi_wider) = bound(s, &r.hi, true, BOUND_DEPTH)?;
             let end = |bp: &Q, bq: &Q| in_pi_units(&(&c * bp + &p), &(&c * bq + &q));
-            let (a, z) = ((end(&lp, &lq)?, r.lo_strict), (end(&hp, &hq)?, r.hi_strict));
+            let (a, z) = (
+                (end(&lp, &lq)?, r.lo_strict || lo_wider),
+                (end(&hp, &hq)?, r.hi_strict || hi_wider),
+            );
             if c.is_negative() {
                 (z, a)
             } else {

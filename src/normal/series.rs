@@ -115,6 +115,35 @@ impl Ctx<'_> {
             return Ok(num);
         }
         let den = self.poly(r.den())?;
+        if !den[0].is_zero() {
+            let inv = self.inverse(&den)?;
+            return self.mul(&num, &inv);
+        }
+        self.quotient_at_zero(r, &den)
+    }
+
+    /// `num/den` for a denominator whose series starts at `ε^k`, `k ≥ 1` (`sin θ/θ`):
+    /// both to order `n + k`, where the numerator's first `k` coefficients must vanish
+    /// too (else it is a pole), and the quotient of the series shifted by `k`.
+    fn quotient_at_zero(&mut self, r: &Rat, den: &Coeffs) -> Result<Coeffs, SeriesError> {
+        let pole = || SeriesError::NotAnalytic("a quotient by a small quantity".into());
+        // A leading coefficient counts only where it is nonzero after a second look.
+        let k = den
+            .iter()
+            .position(|c| !super::settle(c, self.signs).is_zero())
+            .ok_or_else(pole)?;
+        let mut wide = Ctx {
+            eps: self.eps,
+            n: self.n + k,
+            signs: self.signs,
+            memo: HashMap::new(),
+        };
+        let num = wide.poly(r.num())?;
+        let den = wide.poly(r.den())?;
+        if num.iter().take(k).any(|c| !c.is_zero()) || den.iter().take(k).any(|c| !c.is_zero()) {
+            return Err(pole());
+        }
+        let (num, den) = (num[k..].to_vec(), den[k..].to_vec());
         let inv = self.inverse(&den)?;
         self.mul(&num, &inv)
     }

@@ -232,7 +232,8 @@ impl Assumptions {
             }
             total = total.plus(s);
             if total == Sign::Unknown {
-                break;
+                // A constant (`sqrt(2) - 1`): by a rigorous enclosure, where it excludes 0.
+                return super::numeric::sign(p).unwrap_or(Sign::Unknown);
             }
         }
         total

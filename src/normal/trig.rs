@@ -1,9 +1,11 @@
-//! Sines and cosines: sums and integer multiples expanded, exact values at multiples of π/12.
+//! Sines and cosines: sums and integer multiples expanded, exact values at multiples of
+//! π/12, π/8, π/60 and π/24.
 //!
 //! An argument `Σ qᵢ·mᵢ` is split into terms; a term `(a/b)·m` is the integer
 //! multiple `a` of the base angle `m/b`, so `sin(2θ)` becomes `2 sin θ cos θ` while
 //! `sin(θ/2)` stays an atom. The `π` term is reduced modulo 2π and, at multiples of
-//! π/12 (so every multiple of π/6 and π/4), replaced by its exact value.
+//! π/12, π/8, π/60 (π/5, π/10) and π/24, replaced by its exact value; other multiples
+//! of π are reduced to an angle in (0, π/4) by the symmetries of the circle.
 
 use super::atom::{self, Atom};
 use super::mono::Mono;
@@ -77,19 +79,14 @@ fn exact_pi_twelfths(j: i64) -> Result<Pair, NormError> {
 
 /// `(cos(jπ/8), sin(jπ/8))` exactly for odd `j` (even `j` are twelfths): from
 /// `cos(π/8) = sqrt(2 + sqrt(2))/2` and `sin(π/8) = sqrt(2 - sqrt(2))/2`, by the
-/// symmetries of the circle. Products of the two radicals are merged only when a
-/// difference is settled ([`super::merge`]), so half angles of `x + π/4` are decided.
+/// symmetries of the circle. The constructor writes `sqrt(2 - sqrt(2))` through its
+/// conjugate as `(√2 − 1) sqrt(2 + sqrt(2))`, so the values are canonical in
+/// ℚ(√2, sqrt(2 + √2)).
 fn exact_pi_odd_eighths(j: i64) -> Result<Pair, NormError> {
     let half = Q::new(BigInt::from(1), BigInt::from(2));
     let r2 = sqrt_prime(2);
-    let c = Rat::atom(atom::intern(Atom::Sqrt(
-        Rat::int(2).add(&r2)?.num().clone(),
-    )))
-    .scale(&half);
-    let s = Rat::atom(atom::intern(Atom::Sqrt(
-        Rat::int(2).sub(&r2)?.num().clone(),
-    )))
-    .scale(&half);
+    let c = sqrt_of(&Rat::int(2).add(&r2)?)?.scale(&half);
+    let s = sqrt_of(&Rat::int(2).sub(&r2)?)?.scale(&half);
     Ok(match j.rem_euclid(16) {
         1 => (c, s),
         3 => (s, c),
@@ -173,29 +170,94 @@ fn pair(u: &Rat) -> Result<Pair, NormError> {
     Ok(total)
 }
 
-/// The pair of `q·π`.
+/// The pair of `q·π`: exact where `q` is a multiple of 1/12, 1/8, 1/60 or 1/24 (the
+/// angles whose sines are square roots of square roots rigor writes canonically), else
+/// atoms of an angle in (0, π/4) by the symmetries of the circle, so that `sin(6π/7)` and
+/// `sin(π/7)`, `cos(8π/5)` and `cos(2π/5)`, `sin(3π/7)` and `cos(π/14)` meet.
 fn pi_pair(q: &Q) -> Result<Pair, NormError> {
     let two = Q::from_integer(BigInt::from(2));
     // q mod 2, in [0, 2).
     let r = q - (q / &two).floor() * &two;
-    let twelve = &r * Q::from_integer(BigInt::from(12));
-    if twelve.is_integer() {
-        let j = twelve.to_integer().to_i64().unwrap_or(0);
+    let times = |k: i64| {
+        let x = &r * Q::from_integer(BigInt::from(k));
+        x.is_integer().then(|| x.to_integer().to_i64().unwrap_or(0))
+    };
+    if let Some(j) = times(12) {
         return exact_pi_twelfths(j);
     }
-    let eight = &r * Q::from_integer(BigInt::from(8));
-    if eight.is_integer() {
-        return exact_pi_odd_eighths(eight.to_integer().to_i64().unwrap_or(1));
+    if let Some(j) = times(8) {
+        return exact_pi_odd_eighths(j);
     }
-    // sin(x + π) = −sin x: keep the atom's angle in (0, π).
-    let (r, flip) = if r > Q::one() {
+    if let Some(j) = times(60) {
+        return exact_pi_sixtieths(j);
+    }
+    if let Some(j) = times(24) {
+        return exact_pi_odd_twentyfourths(j);
+    }
+    let half = Q::new(BigInt::one(), BigInt::from(2));
+    let quarter = Q::new(BigInt::one(), BigInt::from(4));
+    // sin(x + π) = −sin x, cos(x + π) = −cos x.
+    let (r, turn) = if r > Q::one() {
         (r - Q::one(), true)
     } else {
         (r, false)
     };
+    // sin(π − x) = sin x, cos(π − x) = −cos x.
+    let (r, mirror) = if r > half {
+        (Q::one() - r, true)
+    } else {
+        (r, false)
+    };
+    // sin(π/2 − x) = cos x.
+    let (r, swap) = if r > quarter {
+        (half - r, true)
+    } else {
+        (r, false)
+    };
     let pi = atom::intern(Atom::Pi);
-    let (c, s) = atoms_of(Rat::poly(Poly::term(Mono::atom(pi, 1), r))?);
-    Ok(if flip { (c.neg(), s.neg()) } else { (c, s) })
+    let (mut c, mut s) = atoms_of(Rat::poly(Poly::term(Mono::atom(pi, 1), r))?);
+    if swap {
+        std::mem::swap(&mut c, &mut s);
+    }
+    if mirror {
+        c = c.neg();
+    }
+    Ok(if turn { (c.neg(), s.neg()) } else { (c, s) })
+}
+
+/// `sqrt(n)` of a rational, through the constructor (numbers carry no signs).
+fn sqrt_of(n: &Rat) -> Result<Rat, NormError> {
+    super::func::sqrt(n, &super::sign::Assumptions::default())
+}
+
+/// `(cos(jπ/60), sin(jπ/60))` exactly: `π/60 = 5·π/12 − 2·π/5`, with the twelfths and
+/// `cos(π/5) = (1 + √5)/4`, `sin(π/5) = sqrt(10 − 2√5)/4 = √2 (√5 − 1) sqrt(5 + √5)/8`
+/// (one nested radical, `sqrt(5 + √5)`, whose square the rules reduce: the values are
+/// canonical in ℚ(√2, √3, √5, sqrt(5 + √5))).
+fn exact_pi_sixtieths(j: i64) -> Result<Pair, NormError> {
+    let q = |a: i64, b: i64| Q::new(BigInt::from(a), BigInt::from(b));
+    let r5 = sqrt_prime(5);
+    let w = sqrt_of(&Rat::int(5).add(&r5)?)?;
+    let c5 = r5.add(&Rat::one())?.scale(&q(1, 4));
+    let s5 = sqrt_prime(2)
+        .mul(&r5.sub(&Rat::one())?)?
+        .mul(&w)?
+        .scale(&q(1, 8));
+    // j/60 = (−2j)/5 + 5j/12.
+    let fifths = multiple(&(c5, s5), (-2 * j).rem_euclid(10))?;
+    rotate(&fifths, &exact_pi_twelfths((5 * j).rem_euclid(24))?)
+}
+
+/// `(cos(jπ/24), sin(jπ/24))` exactly for `j` prime to 6 (the other multiples are
+/// twelfths or eighths): `cos(π/24) = √2 X/4`, `sin(π/24) = √2 (√6 − √2)/(4X)` with
+/// `X = sqrt(4 + √6 + √2)` (half angles of π/12; `sqrt(4 − √6 − √2) = (√6 − √2)/X`).
+fn exact_pi_odd_twentyfourths(j: i64) -> Result<Pair, NormError> {
+    let q = |a: i64, b: i64| Q::new(BigInt::from(a), BigInt::from(b));
+    let (r2, r6) = (sqrt_prime(2), sqrt_prime(2).mul(&sqrt_prime(3))?);
+    let x = sqrt_of(&Rat::int(4).add(&r6)?.add(&r2)?)?;
+    let c = r2.mul(&x)?.scale(&q(1, 4));
+    let s = r2.mul(&r6.sub(&r2)?)?.div(&x)?.scale(&q(1, 4));
+    multiple(&(c, s), j.rem_euclid(48))
 }
 
 /// `sin(u)`.

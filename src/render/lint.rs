@@ -126,10 +126,10 @@ pub fn github(r: &LintReport) -> String {
                 let mut d = first.clone();
                 d.severity = crate::diag::Severity::Note;
                 if let Some(reason) = c.reason {
-                    d.message = format!("{} [{}]", d.message, reason.as_str());
+                    d.message = format!("{} [{}]", d.message, reason.as_str()).into();
                 }
                 if let Some(comment) = &c.comment {
-                    d.notes.push(format!("to have it checked: {comment}"));
+                    d.add_note(format!("to have it checked: {comment}"));
                 }
                 out.push_str(&super::github::command_in(&r.path, &idx, &d));
             }

@@ -12,6 +12,7 @@ mod error_index;
 mod fuzz;
 mod guard;
 mod hostile;
+mod identities;
 mod latex_readings;
 mod library;
 mod lint;

@@ -212,7 +212,9 @@ fn radical_pair(rng: &mut Rng, sc: &Scope) -> (E, E) {
     let (p, r) = (nonneg(rng, sc), nonneg(rng, sc));
     let pos = positive(rng, sc);
     let any = rational_expr(rng, 1);
-    match rng.below(12) {
+    match rng.below(15) {
+        12 => powers_of_one_base(rng, sc),
+        13 | 14 => denested(rng),
         0 => (sqrt(mul(p.clone(), r.clone())), mul(sqrt(p), sqrt(r))),
         1 => (
             sqrt(mul(pow(any.clone(), 2), p.clone())),
@@ -257,6 +259,60 @@ fn radical_pair(rng: &mut Rng, sc: &Scope) -> (E, E) {
             (sqrt(n(4 * k)), mul(n(2), sqrt(n(k))))
         }
     }
+}
+
+/// Rational powers of one base written two ways (issue 31): `b^(i/m) b^(j/k)` against
+/// `b^((i k + j m)/(m k))`, for a number or a symbol declared positive.
+fn powers_of_one_base(rng: &mut Rng, sc: &Scope) -> (E, E) {
+    let pos = sc.names(|d| decl_sign(d) == Sg::Pos);
+    let base = if rng.chance(0.5) {
+        n(rng.pick(&[2, 3, 5, 6, 10]))
+    } else {
+        s(rng.pick(&pos))
+    };
+    let (m, k) = (rng.int(2, 6), rng.int(2, 6));
+    let (i, j) = (rng.int(1, m - 1), rng.int(1, 2 * k));
+    (
+        mul(powq(base.clone(), i, m), powq(base.clone(), j, k)),
+        powq(base, i * k + j * m, m * k),
+    )
+}
+
+/// A nested square root that denests (issue 31): the root of `(a + b sqrt(c))^2` or of
+/// `(sqrt(p) + sqrt(q) - sqrt(r))^2` written out, against the positive one of the two.
+fn denested(rng: &mut Rng) -> (E, E) {
+    let primes = [2, 3, 5, 7, 11, 13];
+    if rng.chance(0.5) {
+        let (a, b, c) = (rng.int(1, 6), rng.int(1, 4), rng.pick(&primes));
+        let minus = rng.chance(0.5);
+        let inside = add(
+            n(a * a + b * b * c),
+            mul(n(if minus { -2 * a * b } else { 2 * a * b }), sqrt(n(c))),
+        );
+        let root = mul(n(b), sqrt(n(c)));
+        let rhs = if !minus {
+            add(n(a), root)
+        } else if a * a > b * b * c {
+            sub(n(a), root)
+        } else {
+            sub(root, n(a))
+        };
+        return (sqrt(inside), rhs);
+    }
+    let (p, q, r) = (rng.pick(&primes), rng.pick(&primes), rng.pick(&primes));
+    if p == q || q == r || p == r {
+        return (sqrt(n(4 * p)), mul(n(2), sqrt(n(p))));
+    }
+    // (√p + √q − √r)² = p + q + r + 2√(pq) − 2√(pr) − 2√(qr), positive for r < p + q.
+    let inside = sum(vec![
+        n(p + q + r),
+        mul(n(2), sqrt(n(p * q))),
+        mul(n(-2), sqrt(n(p * r))),
+        mul(n(-2), sqrt(n(q * r))),
+    ]);
+    let value = sub(add(sqrt(n(p)), sqrt(n(q))), sqrt(n(r)));
+    let positive = (p as f64).sqrt() + (q as f64).sqrt() > (r as f64).sqrt();
+    (sqrt(inside), if positive { value } else { neg(value) })
 }
 
 fn range_pair(rng: &mut Rng, sc: &mut Scope) -> (E, E) {
@@ -322,7 +378,8 @@ fn range_pair(rng: &mut Rng, sc: &mut Scope) -> (E, E) {
 fn trig_pair(rng: &mut Rng, _sc: &Scope) -> (E, E) {
     let (a, b) = (angle(rng), angle(rng));
     let k = rational_expr(rng, 0);
-    match rng.below(16) {
+    match rng.below(18) {
+        16 | 17 => pi_multiples(rng, k),
         0 => (
             mul(k.clone(), add(pow(sin(a.clone()), 2), pow(cos(a), 2))),
             k,
@@ -379,6 +436,34 @@ fn trig_pair(rng: &mut Rng, _sc: &Scope) -> (E, E) {
             (mul(k.clone(), l), mul(k, r))
         }
     }
+}
+
+/// Sines and cosines at rational multiples of π (issue 31): the symmetries of the
+/// circle at any denominator, and exact values at π/5, π/10, π/12, π/24 written as
+/// radicals, each times `k`.
+fn pi_multiples(rng: &mut Rng, k: E) -> (E, E) {
+    let d = rng.pick(&[7, 9, 11, 13, 14, 18]);
+    let j = rng.int(1, d - 1);
+    let at = |num: i64| mul(q(num, d), E::Pi);
+    let r5 = sqrt(n(5));
+    let (l, r) = match rng.below(8) {
+        // sin(π − x) = sin x, cos(π − x) = −cos x, cos(2π − x) = cos x, sin(π/2 − x) = cos x.
+        0 => (sin(at(d - j)), sin(at(j))),
+        1 => (cos(at(d - j)), neg(cos(at(j)))),
+        2 => (cos(at(2 * d - j)), cos(at(j))),
+        3 => (sin(sub(div(E::Pi, n(2)), at(j))), cos(at(j))),
+        4 => (cos(div(E::Pi, n(5))), div(add(n(1), r5), n(4))),
+        5 => (sin(div(E::Pi, n(10))), div(sub(r5, n(1)), n(4))),
+        6 => (
+            sin(mul(q(2, 5), E::Pi)),
+            div(sqrt(add(n(10), mul(n(2), r5))), n(4)),
+        ),
+        _ => (
+            cos(div(E::Pi, n(24))),
+            div(sqrt(add(n(2), sqrt(add(n(2), sqrt(n(3)))))), n(2)),
+        ),
+    };
+    (mul(k.clone(), l), mul(k, r))
 }
 
 fn exp_ln_pair(rng: &mut Rng, sc: &Scope) -> (E, E) {
