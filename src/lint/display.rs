@@ -112,13 +112,9 @@ pub fn clean(text: &str) -> String {
         let inner = envs.last().is_some_and(Option::is_none);
         match bytes[k] {
             b'{' => {
-                if text[k + 1..]
-                    .trim_start_matches([' ', '\t'])
-                    .starts_with('}')
-                {
-                    let e = k + 1 + text[k + 1..].find('}').unwrap_or(0);
-                    blank(&mut out, k, e + 1);
-                    k = e + 1;
+                if let Some(e) = empty_group_end(text, k) {
+                    blank(&mut out, k, e);
+                    k = e;
                     continue;
                 }
                 depth += 1;
@@ -208,6 +204,14 @@ pub fn clean(text: &str) -> String {
     }
     trailing_punctuation(&mut out);
     String::from_utf8(out).unwrap_or_else(|_| text.to_string())
+}
+
+/// The end of an empty group `{}` (or `{ }`) opened at `k`, past its closing brace.
+fn empty_group_end(text: &str, k: usize) -> Option<usize> {
+    let rest = &text[k + 1..];
+    rest.trim_start_matches([' ', '\t'])
+        .starts_with('}')
+        .then(|| k + 1 + rest.find('}').unwrap_or(0) + 1)
 }
 
 /// Blanks a `,` `.` or `;` that ends the row before a row break at `k`.
