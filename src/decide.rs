@@ -881,18 +881,7 @@ impl<'a> Evaluator<'a> {
             Atom::Sqrt(x) => self.poly(x)?.sqrt(p),
             Atom::Moment(..) => None,
             // The real principal root; odd roots of negatives are negative.
-            Atom::Root(x, n) => {
-                let v = self.poly(x)?;
-                let inv = Interval::point(Q::new(BigInt::one(), BigInt::from(*n)));
-                let root = |v: &Interval| v.ln(p)?.mul(&inv, p)?.exp(p);
-                if v.is_positive() {
-                    root(&v)
-                } else if v.is_negative() && n % 2 == 1 {
-                    root(&v.neg()?)?.neg()
-                } else {
-                    None
-                }
-            }
+            Atom::Root(x, n) => self.poly(x)?.real_root(*n, p),
             Atom::Abs(x) => self.poly(x)?.abs(),
             Atom::Factor(x) => self.poly(x),
             Atom::Sin(u) => self.rat(u)?.sin(p),

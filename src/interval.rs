@@ -437,6 +437,21 @@ impl Interval {
         Interval::mk(lo, hi, p)
     }
 
+    /// The real principal `n`-th root (`n ≥ 1`): of a positive interval, or, for odd `n`,
+    /// the negated root of a negative one; `None` for an interval that holds 0 or, with
+    /// `n` even, negative values.
+    pub fn real_root(&self, n: u32, p: Prec) -> Option<Interval> {
+        let inv = Interval::point(BigRational::new(BigInt::one(), BigInt::from(n)));
+        let root = |v: &Interval| v.ln(p)?.mul(&inv, p)?.exp(p);
+        if self.is_positive() {
+            root(self)
+        } else if self.is_negative() && n % 2 == 1 {
+            root(&self.neg()?)?.neg()
+        } else {
+            None
+        }
+    }
+
     /// Enclosure of `sqrt(x)`; `None` unless `lo >= 0`.
     pub fn sqrt(&self, p: Prec) -> Option<Interval> {
         if self.lo.is_negative() {

@@ -293,19 +293,7 @@ fn joins(rows: Rows, before: &str, after: &str) -> bool {
 /// The relations a continuation may start with (`= …`, `\le …`), a command's name read
 /// whole (`\left` is no `\le`).
 pub fn starts_with_relation(text: &str) -> bool {
-    const RELATIONS: [&str; 11] = [
-        "approx",
-        "simeq",
-        "thickapprox",
-        "neq",
-        "ne",
-        "le",
-        "leq",
-        "leqslant",
-        "ge",
-        "geq",
-        "geqslant",
-    ];
+    use super::extract::RELATIONS;
     let t = text.trim_start();
     if t.starts_with(['=', '<', '>']) {
         return true;

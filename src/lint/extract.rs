@@ -421,21 +421,23 @@ fn top_level_colon(text: &str) -> Option<usize> {
     None
 }
 
+/// The relation commands of LaTeX that rigor reads, by name (without the backslash).
+pub(super) const RELATIONS: [&str; 11] = [
+    "approx",
+    "simeq",
+    "thickapprox",
+    "neq",
+    "ne",
+    "le",
+    "leq",
+    "leqslant",
+    "ge",
+    "geq",
+    "geqslant",
+];
+
 /// Whether a piece of LaTeX math holds a relation outside braces.
 pub(super) fn has_relation(text: &str) -> bool {
-    const RELATIONS: [&str; 11] = [
-        "approx",
-        "simeq",
-        "thickapprox",
-        "neq",
-        "ne",
-        "le",
-        "leq",
-        "leqslant",
-        "ge",
-        "geq",
-        "geqslant",
-    ];
     let mut depth = 0i32;
     let bytes = text.as_bytes();
     let mut k = 0;

@@ -12,8 +12,7 @@ use super::poly::Poly;
 use super::rat::Rat;
 use super::sign::Sign;
 use crate::interval::{Interval, Prec};
-use num_bigint::BigInt;
-use num_traits::{One, ToPrimitive};
+use num_traits::ToPrimitive;
 use std::collections::HashMap;
 
 /// Atoms deeper than this are not evaluated (every level of nesting costs a root).
@@ -100,19 +99,7 @@ impl Enclosure {
         let v = match &*atom::get(a) {
             Atom::Pi => Interval::pi(p),
             Atom::Sqrt(x) => self.poly(x)?.sqrt(p),
-            Atom::Root(x, n) => {
-                let v = self.poly(x)?;
-                let inv =
-                    Interval::point(num_rational::Ratio::new(BigInt::one(), BigInt::from(*n)));
-                let root = |v: &Interval| v.ln(p)?.mul(&inv, p)?.exp(p);
-                if v.is_positive() {
-                    root(&v)
-                } else if v.is_negative() && n % 2 == 1 {
-                    root(&v.neg()?)?.neg()
-                } else {
-                    None
-                }
-            }
+            Atom::Root(x, n) => self.poly(x)?.real_root(*n, p),
             Atom::Abs(x) => self.poly(x)?.abs(),
             Atom::Sin(u) => self.rat(u)?.sin(p),
             Atom::Cos(u) => self.rat(u)?.cos(p),
