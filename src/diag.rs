@@ -554,6 +554,27 @@ impl Note {
             other => other.clone(),
         }
     }
+
+    /// The same note with the values of sides it shows rewritten by `f` (how a view
+    /// writes them; the points of a counterexample are left as they are).
+    pub fn map_values(&self, f: impl Fn(&str) -> String) -> Note {
+        match self {
+            Note::Side { left, value } => Note::Side {
+                left: *left,
+                value: f(value),
+            },
+            Note::Reduced { using, left, right } => Note::Reduced {
+                using: using.clone(),
+                left: f(left),
+                right: f(right),
+            },
+            Note::Remainder { eliminated, value } => Note::Remainder {
+                eliminated: *eliminated,
+                value: f(value),
+            },
+            other => other.clone(),
+        }
+    }
 }
 
 impl std::fmt::Display for Note {

@@ -226,11 +226,7 @@ pub fn mark(
     });
     print_rows(&rows, reports.summary, format);
     match reports.feedback {
-        Some(dir) => write_feedback(
-            dir,
-            &rows,
-            reports.reveal.then_some(ref_report.source.as_str()),
-        ),
+        Some(dir) => write_feedback(dir, &rows, reports.reveal.then_some(&ref_report)),
         None => 0,
     }
 }
@@ -267,7 +263,7 @@ fn print_rows(rows: &[Row], summary: bool, format: crate::MarkFormat) {
 }
 
 /// One Markdown feedback file per row, named by its position and its file's stem.
-fn write_feedback(dir: &Path, rows: &[Row], reveal: Option<&str>) -> u8 {
+fn write_feedback(dir: &Path, rows: &[Row], reveal: Option<&rigor::check::FileReport>) -> u8 {
     if let Err(e) = std::fs::create_dir_all(dir) {
         errln!("error: cannot create {}: {e}", dir.display());
         return 2;

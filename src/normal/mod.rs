@@ -15,6 +15,7 @@ pub(crate) mod numeric;
 pub mod pack;
 pub(crate) mod poly;
 pub(crate) mod power;
+pub mod present;
 pub mod print;
 pub(crate) mod qops;
 pub(crate) mod ranges;

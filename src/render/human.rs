@@ -42,13 +42,23 @@ pub fn report(r: &FileReport, verbose: bool) -> String {
         if previous_was_diagnostic {
             out.push('\n');
         }
-        out.push_str(&crate::diag::render_in(d, &r.path, &idx));
+        out.push_str(&crate::diag::render_in(&as_shown(d, r), &r.path, &idx));
         previous_was_diagnostic = true;
     }
     for (_, s) in pending {
         out.push_str(&s);
     }
     out
+}
+
+/// A diagnostic of `r` as every view shows it: the sides in its notes with their square
+/// roots as a person writes them (`sqrt(2 g h)`, see [`super::pieces::as_written`]).
+pub(crate) fn as_shown(d: &crate::diag::Diagnostic, r: &FileReport) -> crate::diag::Diagnostic {
+    let mut shown = d.clone();
+    shown.notes = (d.notes.iter())
+        .map(|n| n.map_values(|v| super::pieces::as_written(v, &r.env)))
+        .collect();
+    shown
 }
 
 /// One line `files: N, claims: C, links: L, verified: V, failed: F, undecided: U,

@@ -2,7 +2,7 @@
 //! gradebook, and one Markdown feedback file per submission. Submissions are untrusted:
 //! their names and text are escaped wherever they appear.
 
-use crate::check::Status;
+use crate::check::{FileReport, Status};
 use crate::diag::Mistake;
 use crate::mark::facts::{FactKind, Standing};
 use crate::mark::{Outcome, ResultMark, Row, Why};
@@ -414,7 +414,8 @@ fn first_mistake(r: &Row) -> String {
     let (Some(f), Some(rep)) = (&r.first_failure, &r.report) else {
         return String::new();
     };
-    let shown = crate::diag::render(&f.diagnostic, &clean(&r.file), &rep.source);
+    let d = crate::render::human::as_shown(&f.diagnostic, rep);
+    let shown = crate::diag::render(&d, &clean(&r.file), &rep.source);
     format!(
         "\n## First mistake\n\nLine {}: {}.\n\n```text\n{}```\n\nHint: {}.\n",
         f.line,
@@ -424,9 +425,11 @@ fn first_mistake(r: &Row) -> String {
     )
 }
 
-/// The feedback file for one submission (Markdown). The reference's working is shown
+/// The feedback file for one submission (Markdown). The submission's working is typeset
+/// by the renderer of worked solutions ([`crate::render::markdown::section`]), each step
+/// that does not follow marked where it stands; the reference's worked solution is shown
 /// only with `reveal`.
-pub fn feedback(r: &Row, reveal: Option<&str>) -> String {
+pub fn feedback(r: &Row, reveal: Option<&FileReport>) -> String {
     let mut out = format!(
         "# Feedback: {}\n\n",
         crate::render::text::markdown_text(&clean(&r.file))
@@ -482,11 +485,13 @@ pub fn feedback(r: &Row, reveal: Option<&str>) -> String {
             out.push_str(&format!("  ({e})\n"));
         }
     }
-    if let Some(text) = reveal {
-        out.push_str(&format!(
-            "\n## Reference\n\n```text\n{}\n```\n",
-            fenced(text)
-        ));
+    if let Some(rep) = &r.report {
+        out.push_str("\n## Your working\n\n");
+        out.push_str(&crate::render::markdown::section(rep));
+    }
+    if let Some(reference) = reveal {
+        out.push_str("\n## Reference\n\n");
+        out.push_str(&crate::render::markdown::section(reference));
     }
     out
 }

@@ -32,6 +32,20 @@ pub fn document_with(report: &FileReport, detail: Detail) -> String {
     out
 }
 
+/// The worked solution as a section of another document (`rigor mark`'s feedback):
+/// no title, every heading one level further down.
+pub fn section(report: &FileReport) -> String {
+    let solution = build_with(report, Detail::Written);
+    let mut out = String::new();
+    for block in &solution.blocks {
+        if !out.is_empty() {
+            out.push('\n');
+        }
+        block_markdown(block, true, &mut out);
+    }
+    out
+}
+
 /// Several checked files as one document: the title, a numbered list of contents, and
 /// one numbered section per file (`## 3. Title`), equations numbered by section (`3.2`)
 /// and a `use` of another file of the book a reference to its section and equations.

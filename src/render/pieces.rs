@@ -305,6 +305,22 @@ pub(crate) fn rich(t: &str) -> Vec<Inline> {
     out
 }
 
+/// Words with their `…` spans as code (``did you mean `R`?``); with an odd number of
+/// backticks, all words.
+fn code_spans(t: &str) -> Vec<Inline> {
+    let parts: Vec<&str> = t.split('`').collect();
+    if parts.len() % 2 == 0 {
+        return vec![Inline::Text(t.to_string())];
+    }
+    (parts.iter().enumerate())
+        .filter(|(_, p)| !p.is_empty())
+        .map(|(k, p)| match k % 2 {
+            1 => Inline::Code(p.to_string()),
+            _ => Inline::Text(p.to_string()),
+        })
+        .collect()
+}
+
 /// A note of a failure, typeset where it states expressions (a side, the difference
 /// left after the facts, the values of a counterexample: normal forms in rigor's own
 /// syntax). An expression that does not read stays words.
@@ -314,7 +330,7 @@ pub(crate) fn note_inlines(note: &Note) -> Vec<Inline> {
             .ok()
             .map(|e| super::expr::expr_latex(&e))
     };
-    let words = || vec![Inline::Text(note.to_string())];
+    let words = || code_spans(&note.to_string());
     // Set as a display would set it, so fractions keep their size.
     let lead_and = |lead: &str, value: &str| match read(value) {
         Some(m) => vec![
@@ -413,4 +429,25 @@ pub(crate) fn words_and_math(t: &str, ctx: &Ctx) -> Vec<Inline> {
         out.push(Inline::Text(words));
     }
     out
+}
+
+/// A value the checker records, with its square roots as a person writes them
+/// (`sqrt(3 g/(2 L))`, not `sqrt(6) sqrt(L) sqrt(g)/(2 L)`): the text is read in the
+/// file's signs, without its definitions (a value names what the checker solved for,
+/// never what a `let` stands for), and written by [`radicals`](crate::normal::present::radicals). A text that
+/// does not read so is returned as recorded.
+pub(crate) fn as_written(s: &str, env: &crate::lower::Env) -> String {
+    if !s.contains("sqrt(") {
+        return s.to_string();
+    }
+    let signs_only = crate::lower::Env {
+        signs: env.signs.clone(),
+        time: env.time.clone(),
+        ..crate::lower::Env::default()
+    };
+    let parsed = crate::syntax::parse_expr(s, &crate::syntax::ParseOptions::default());
+    match parsed.map(|e| crate::lower::lower(&e, &signs_only)) {
+        Ok(Ok(r)) => crate::normal::present::radicals(&r, &env.signs),
+        _ => s.to_string(),
+    }
 }

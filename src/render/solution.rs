@@ -860,8 +860,15 @@ impl<'a> Builder<'a> {
             if let Some(w) = found {
                 let line = several.then_some(k + 1);
                 work.extend(
-                    super::steps::elimination(w, link.op, line, &self.ctx, &number)
-                        .unwrap_or_default(),
+                    super::steps::elimination(
+                        w,
+                        link.op,
+                        line,
+                        &self.ctx,
+                        &self.report.env,
+                        &number,
+                    )
+                    .unwrap_or_default(),
                 );
             }
         }
@@ -923,7 +930,12 @@ impl<'a> Builder<'a> {
         };
         // The words under the caret are the hint ("the left side is 2 × the right side
         // (a constant factor)"): a document has no caret, so they lead the notes.
-        let mut notes = d.notes.clone();
+        let env = &self.report.env;
+        let mut notes: Vec<Note> = d
+            .notes
+            .iter()
+            .map(|n| n.map_values(|v| super::pieces::as_written(v, env)))
+            .collect();
         if let Some((_, hint)) = d.primary.as_ref().filter(|(_, h)| !h.is_empty()) {
             if in_claim && d.severity == Severity::Error {
                 notes.insert(0, Note::from(hint.as_str()));

@@ -132,6 +132,11 @@ fn parsed(s: &str) -> Option<Expr> {
     crate::syntax::parse_expr(s, &crate::syntax::ParseOptions::default()).ok()
 }
 
+/// [`as_written`](super::pieces::as_written) as a tree.
+fn shown(s: &str, env: &Env) -> Option<Expr> {
+    parsed(&super::pieces::as_written(s, env)).or_else(|| parsed(s))
+}
+
 /// `env` with `vars` bound, as `Lowerer` binds them inside an integral: each knows
 /// only its sign (no interval), and a `let` of the same name does not apply.
 fn bind(env: &Env, vars: &[(String, Sign)]) -> Env {
@@ -653,9 +658,10 @@ pub(crate) fn elimination(
     op: RelOp,
     line: Option<usize>,
     ctx: &Ctx,
+    env: &Env,
     number: &dyn Fn(&str) -> String,
 ) -> Option<Vec<Work>> {
-    let latex = |s: &str| parsed(s).map(|e| expr_latex_in(&e, ctx));
+    let latex = |s: &str| shown(s, env).map(|e| expr_latex_in(&e, ctx));
     let prefix = line.map_or_else(String::new, |k| format!("Line {k}: "));
     let mut out = Vec::new();
     // As a tutor says it: "From (4), θ̈ = …", one fact at a time.
@@ -679,9 +685,9 @@ pub(crate) fn elimination(
     }
     match &w.multiple {
         Some(m) => {
-            let (difference, value) = (parsed(&m.difference)?, parsed(&m.value)?);
+            let (difference, value) = (shown(&m.difference, env)?, shown(&m.value, env)?);
             let one = |e: &Expr| matches!(&e.kind, ExprKind::Num(q) if num_traits::One::is_one(q));
-            let factor = parsed(&m.factor)?;
+            let factor = shown(&m.factor, env)?;
             let product = match &factor.kind {
                 _ if one(&factor) => value,
                 ExprKind::Neg(f) if one(f) => node(ExprKind::Neg(Box::new(value))),

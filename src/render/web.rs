@@ -75,7 +75,7 @@ pub fn page(report: &FileReport) -> Value {
     let rendered: Vec<String> = report
         .diagnostics
         .iter()
-        .map(|d| crate::diag::render_in(d, &report.path, &idx))
+        .map(|d| crate::diag::render_in(&super::human::as_shown(d, report), &report.path, &idx))
         .collect();
     let solution = build(report);
     json!({
@@ -128,8 +128,15 @@ fn block(b: &Block) -> Value {
     }
 }
 
+/// A problem as the worked solution sets it: its notes typeset by the same pieces as
+/// the LaTeX and Markdown ([`super::solution::note_inlines`]), each a list of parts.
 fn problem(p: &Problem) -> Value {
-    json!({ "kind": p.kind.words(), "line": p.line, "message": p.message, "notes": p.notes.iter().map(ToString::to_string).collect::<Vec<_>>() })
+    let notes: Vec<Value> = p
+        .notes
+        .iter()
+        .map(|n| Value::from(parts(&super::solution::note_inlines(n))))
+        .collect();
+    json!({ "kind": p.kind.words(), "line": p.line, "message": p.message, "notes": notes })
 }
 
 #[cfg(test)]

@@ -308,3 +308,47 @@ fn the_class_summary_keeps_a_hostile_file_name_as_text() {
         "{row}"
     );
 }
+
+/// A side with square roots reads as a person writes it in every view that shows it:
+/// the terminal, the worked solution, the playground. The value is the same; only the
+/// normal form's split roots (`sqrt(2) sqrt(g) sqrt(h)`) are merged.
+#[test]
+fn square_roots_read_as_written_in_every_view() {
+    let file = "tests/check/fail/kind_root_of_unsigned_unknown.deriv";
+    let human = run(&["check", file]);
+    assert!(
+        human.stderr.contains("= right side: sqrt(2 g h)"),
+        "{}",
+        show(&human)
+    );
+    assert!(
+        !human.stderr.contains("sqrt(2) sqrt(g)"),
+        "{}",
+        show(&human)
+    );
+    let md = run(&["markdown", file]);
+    assert!(
+        md.stdout
+            .contains(r"right side: $\displaystyle \sqrt{2 g\,h}$"),
+        "{}",
+        show(&md)
+    );
+    // The playground's problem notes are typeset by the same pieces: text and math parts.
+    let text = std::fs::read_to_string(file).expect("fixture");
+    let request = serde_json::json!({ "name": "f.deriv", "source": text }).to_string();
+    let page: serde_json::Value =
+        serde_json::from_str(&rigor::render::web::respond(&request, None)).expect("JSON");
+    let blocks = page["solution"]["blocks"].as_array().expect("blocks");
+    let problem = blocks
+        .iter()
+        .find(|b| b["kind"] == "problems")
+        .expect("a problem");
+    let notes = problem["items"][0]["notes"].as_array().expect("notes");
+    assert!(
+        notes.iter().any(|n| n
+            == &serde_json::json!([{ "text": "right side: " }, { "math": r"\displaystyle \sqrt{2 g\,h}" }])),
+        "{notes:?}"
+    );
+    let rendered = page["rendered"][0].as_str().unwrap_or("");
+    assert!(rendered.contains("= right side: sqrt(2 g h)"), "{rendered}");
+}

@@ -458,7 +458,8 @@ function problemItem(p) {
   const head = el("strong", {}, p.kind);
   const where = p.line != null ? ` (line ${p.line})` : "";
   const q = el("blockquote", { class: "problem", "data-line": p.line }, head, where + ": " + p.message);
-  for (const n of p.notes) q.append(el("div", { class: "note" }, n));
+  // Each note is typeset by the worked solution's own pieces: text and math parts.
+  for (const n of p.notes) q.append(el("div", { class: "note" }, Array.isArray(n) ? inline(n) : n));
   return q;
 }
 
