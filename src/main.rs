@@ -156,6 +156,9 @@ enum Command {
         #[arg(long, default_value_t = 30.0)]
         budget: f64,
     },
+    /// Serve editors: the Language Server Protocol over standard input and output
+    /// (diagnostics as you type, hovers, go to definition, the outline, quick fixes).
+    Lsp,
     /// Write a derivation as a Markdown worked solution.
     Markdown {
         /// The derivation file, or a folder: one book of all its files (in the order of
@@ -261,6 +264,13 @@ fn main() -> ExitCode {
             },
             &opts,
         ),
+        Command::Lsp => match rigor::lsp::run() {
+            Ok(()) => 0,
+            Err(e) => {
+                eprintln!("error: rigor lsp: {e}");
+                1
+            }
+        },
         Command::Lint { docs, format } => cli::lint(&docs, format, timeout, &opts),
         Command::Mark {
             reference,
