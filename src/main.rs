@@ -208,11 +208,13 @@ fn main() -> ExitCode {
     let timeout = seconds(cli.timeout, 10.0);
     // The work outside `check_source` (`simplify`, `equiv`, the worked solutions' steps)
     // has one budget; `check_source` times each claim with the `Options` it is given.
-    let _deadline = rigor::normal::limits::until(if matches!(cli.command, Command::Check { .. }) {
-        None
-    } else {
-        rigor::clock::Deadline::after(timeout, rigor::clock::system())
-    });
+    let _deadline = rigor::normal::limits::until(
+        if matches!(cli.command, Command::Check { .. } | Command::Lsp) {
+            None
+        } else {
+            rigor::clock::Deadline::after(timeout, rigor::clock::system())
+        },
+    );
     let code = match cli.command {
         Command::Simplify {
             expr,
@@ -264,7 +266,12 @@ fn main() -> ExitCode {
             },
             &opts,
         ),
-        Command::Lsp => match rigor::lsp::run() {
+        Command::Lsp => match rigor::lsp::run(rigor::Options {
+            parse: opts,
+            limits: rigor::normal::limits::current(),
+            timeout,
+            ..rigor::Options::default()
+        }) {
             Ok(()) => 0,
             Err(e) => {
                 eprintln!("error: rigor lsp: {e}");

@@ -71,7 +71,10 @@ fn fixes(
     match d.code {
         Code::Undeclared => {
             if let Some(s) = between(label, "did you mean `", "`?") {
-                out.push((format!("Replace `{written}` with `{s}`"), vec![(span, s.to_string())]));
+                out.push((
+                    format!("Replace `{written}` with `{s}`"),
+                    vec![(span, s.to_string())],
+                ));
             }
             if let Some(name) = between(label, "with `time ", "`") {
                 out.extend(declare_time(r, name));
@@ -79,7 +82,10 @@ fn fixes(
         }
         Code::UnknownLabel => {
             if let Some(s) = between(label, "did you mean [", "]?") {
-                out.push((format!("Replace {written} with [{s}]"), vec![(span, format!("[{s}]"))]));
+                out.push((
+                    format!("Replace {written} with [{s}]"),
+                    vec![(span, format!("[{s}]"))],
+                ));
             }
         }
         Code::ImportFailed => {
@@ -115,7 +121,11 @@ fn declare_time(r: &FileReport, name: &str) -> Option<Fix> {
     let file = r.ast.as_ref()?;
     let text = &r.source;
     let line = |at: usize| {
-        let before = if at > 0 && !text[..at].ends_with('\n') { "\n" } else { "" };
+        let before = if at > 0 && !text[..at].ends_with('\n') {
+            "\n"
+        } else {
+            ""
+        };
         (Span::new(at, at), format!("{before}time {name}\n"))
     };
     let title = format!("Declare `{name}` with `time {name}`");
@@ -124,7 +134,10 @@ fn declare_time(r: &FileReport, name: &str) -> Option<Fix> {
             .filter(|s| {
                 matches!(
                     s.kind,
-                    StmtKind::Symbols { .. } | StmtKind::Time { .. } | StmtKind::Unknowns { .. } | StmtKind::Range { .. }
+                    StmtKind::Symbols { .. }
+                        | StmtKind::Time { .. }
+                        | StmtKind::Unknowns { .. }
+                        | StmtKind::Range { .. }
                 )
             })
             .last()?;
@@ -144,7 +157,13 @@ fn declare_time(r: &FileReport, name: &str) -> Option<Fix> {
         None => Span::new(names[i - 1].span.end, n.span.end),
     };
     let end = s.span.end.min(text.len());
-    Some((title, vec![(cut, String::new()), line(next_line(text, end.saturating_sub(1)))]))
+    Some((
+        title,
+        vec![
+            (cut, String::new()),
+            line(next_line(text, end.saturating_sub(1))),
+        ],
+    ))
 }
 
 /// The `let` a `use` named, written here on the line after the `use`.
@@ -152,7 +171,11 @@ fn define_here(r: &FileReport, at: Span, def: &str) -> Option<Fix> {
     let file = r.ast.as_ref()?;
     let stmt = nav::statements(file).find(|s| s.span.start <= at.start && at.end <= s.span.end)?;
     let after = next_line(&r.source, stmt.span.end.saturating_sub(1));
-    let before = if r.source[..after].ends_with('\n') { "" } else { "\n" };
+    let before = if r.source[..after].ends_with('\n') {
+        ""
+    } else {
+        "\n"
+    };
     Some((
         format!("Write `{def}` here"),
         vec![(Span::new(after, after), format!("{before}{def}\n"))],

@@ -30,9 +30,14 @@ pub fn of_lint(r: &LintReport, uri: &Uri) -> Vec<Diagnostic> {
     let mut out = Vec::new();
     for c in &r.chains {
         match c.verdict {
-            Verdict::Failed => out.extend(c.diagnostics.iter().map(|d| convert(d, uri, &lines, None))),
+            Verdict::Failed => {
+                out.extend(c.diagnostics.iter().map(|d| convert(d, uri, &lines, None)))
+            }
             Verdict::NeedsContext => {
-                let why = c.diagnostics.first().map_or("needs context".to_string(), |d| d.message.to_string());
+                let why = c
+                    .diagnostics
+                    .first()
+                    .map_or("needs context".to_string(), |d| d.message.to_string());
                 let mut d = Diagnostic {
                     range: lines.range(Span::new(c.span.start, c.span.start)),
                     severity: Some(DiagnosticSeverity::INFORMATION),
@@ -45,12 +50,16 @@ pub fn of_lint(r: &LintReport, uri: &Uri) -> Vec<Diagnostic> {
                     ..Diagnostic::default()
                 };
                 if let Some(comment) = &c.comment {
-                    d.message.push_str(&format!("\n(a comment that makes it checkable: {comment})"));
+                    d.message
+                        .push_str(&format!("\n(a comment that makes it checkable: {comment})"));
                 }
                 // The whole first line of the chain, so the editor marks where it starts.
                 let line = lines.position(c.span.start).line as usize;
                 let span = lines.line_span(line);
-                d.range = lines.range(Span::new(c.span.start.max(span.start), span.end.max(c.span.start)));
+                d.range = lines.range(Span::new(
+                    c.span.start.max(span.start),
+                    span.end.max(c.span.start),
+                ));
                 out.push(d);
             }
             Verdict::Verified | Verdict::Defined => {}

@@ -15,7 +15,11 @@ pub fn hover(r: &FileReport, at: usize, doc: Option<&Path>, open: &Open) -> Opti
     let text = &r.source;
     let mut parts = Vec::new();
     match nav::target_at(file, text, at) {
-        Some(Target::Label(c)) => parts.push(label(r, &c, doc, open)?),
+        Some(Target::Label(c)) => {
+            if let Some(l) = label(r, &c, doc, open) {
+                parts.push(l);
+            }
+        }
         Some(Target::Name(name)) => {
             if let Some(s) = symbol(r, &name) {
                 parts.push(s);
@@ -50,12 +54,18 @@ fn label(r: &FileReport, c: &nav::Cited<'_>, doc: Option<&Path>, open: &Open) ->
         let imported = nav::import(doc?, path, open)?;
         let (_, s) = nav::labelled(imported.file.as_ref()?, name)?;
         let stated = imported.text.get(s.span.start..s.span.end)?;
-        return Some(format!("**[{name}]**, from \"{path}\"\n\n{}", code(stated.trim_end())));
+        return Some(format!(
+            "**[{name}]**, from \"{path}\"\n\n{}",
+            code(stated.trim_end())
+        ));
     }
     let (_, s) = nav::labelled(file, name)?;
     let line = crate::diag::line_col(&r.source, s.span.start).0;
     let stated = r.source.get(s.span.start..s.span.end)?;
-    Some(format!("**[{name}]**, line {line}\n\n{}", code(stated.trim_end())))
+    Some(format!(
+        "**[{name}]**, line {line}\n\n{}",
+        code(stated.trim_end())
+    ))
 }
 
 fn symbol(r: &FileReport, name: &str) -> Option<String> {
@@ -78,7 +88,8 @@ fn symbol(r: &FileReport, name: &str) -> Option<String> {
             ..
         } => {
             let rel = |strict: bool| if strict { "<" } else { "<=" };
-            let src = |e: &crate::syntax::ast::Expr| text.get(e.span.start..e.span.end).unwrap_or("?");
+            let src =
+                |e: &crate::syntax::ast::Expr| text.get(e.span.start..e.span.end).unwrap_or("?");
             format!(
                 "a symbol in a range, `{} {} {} {} {}`",
                 src(lo),
@@ -136,7 +147,11 @@ fn link(l: &LinkReport) -> String {
         }
     }
     if let (Some(a), Some(b)) = (&l.lhs, &l.rhs) {
-        out.push_str(&format!("\n\nleft side:\n{}\n\nright side:\n{}", code(a), code(b)));
+        out.push_str(&format!(
+            "\n\nleft side:\n{}\n\nright side:\n{}",
+            code(a),
+            code(b)
+        ));
     }
     if let Some(u) = &l.units {
         out.push_str(&format!("\n\nunit: `{u}`"));

@@ -26,10 +26,10 @@ use lsp_server::{Connection, ErrorCode, Message, Notification, Request, Response
 use lsp_types::notification::{self as note, Notification as _};
 use lsp_types::request::{self as req, Request as _};
 use lsp_types::{
-    CodeActionOrCommand, CodeActionProviderCapability, DocumentSymbolResponse, GotoDefinitionResponse,
-    Hover, HoverContents, HoverProviderCapability, Location, MarkupContent, MarkupKind, OneOf,
-    PublishDiagnosticsParams, ServerCapabilities, TextDocumentSyncCapability, TextDocumentSyncKind,
-    TextDocumentSyncOptions, TextDocumentSyncSaveOptions, Uri,
+    CodeActionOrCommand, CodeActionProviderCapability, DocumentSymbolResponse,
+    GotoDefinitionResponse, Hover, HoverContents, HoverProviderCapability, Location, MarkupContent,
+    MarkupKind, OneOf, PublishDiagnosticsParams, ServerCapabilities, TextDocumentSyncCapability,
+    TextDocumentSyncKind, TextDocumentSyncOptions, TextDocumentSyncSaveOptions, Uri,
 };
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -40,10 +40,12 @@ use world::{Cancel, Kind, Open, Outcome};
 
 pub use world::Kind as DocumentKind;
 
-/// Serves one editor over standard input and output until it says `exit`.
-pub fn run() -> Result<(), String> {
+/// Serves one editor over standard input and output until it says `exit`, checking
+/// with `options` (the command line's limits and time budget; the clock is the
+/// server's own).
+pub fn run(options: crate::Options) -> Result<(), String> {
     let (conn, io) = Connection::stdio();
-    serve(&conn).map_err(|e| e.to_string())?;
+    serve(&conn, options).map_err(|e| e.to_string())?;
     drop(conn);
     io.join().map_err(|e| e.to_string())
 }
@@ -51,12 +53,14 @@ pub fn run() -> Result<(), String> {
 /// What the server says it can do.
 fn capabilities() -> ServerCapabilities {
     ServerCapabilities {
-        text_document_sync: Some(TextDocumentSyncCapability::Options(TextDocumentSyncOptions {
-            open_close: Some(true),
-            change: Some(TextDocumentSyncKind::INCREMENTAL),
-            save: Some(TextDocumentSyncSaveOptions::Supported(true)),
-            ..TextDocumentSyncOptions::default()
-        })),
+        text_document_sync: Some(TextDocumentSyncCapability::Options(
+            TextDocumentSyncOptions {
+                open_close: Some(true),
+                change: Some(TextDocumentSyncKind::INCREMENTAL),
+                save: Some(TextDocumentSyncSaveOptions::Supported(true)),
+                ..TextDocumentSyncOptions::default()
+            },
+        )),
         hover_provider: Some(HoverProviderCapability::Simple(true)),
         definition_provider: Some(OneOf::Left(true)),
         document_symbol_provider: Some(OneOf::Left(true)),
@@ -66,13 +70,14 @@ fn capabilities() -> ServerCapabilities {
 }
 
 /// The protocol on `conn`, from `initialize` to `exit`.
-fn serve(conn: &Connection) -> Result<(), lsp_server::ProtocolError> {
+fn serve(conn: &Connection, options: crate::Options) -> Result<(), lsp_server::ProtocolError> {
     let caps = serde_json::to_value(capabilities()).unwrap_or_default();
     conn.initialize(caps)?;
     let shared = Arc::new(Shared {
         docs: Mutex::new(HashMap::new()),
         done: Mutex::new(HashMap::new()),
         sender: conn.sender.clone(),
+        options,
     });
     for msg in &conn.receiver {
         match msg {
@@ -123,6 +128,8 @@ struct Shared {
     docs: Mutex<HashMap<Uri, Doc>>,
     done: Mutex<HashMap<Uri, Arc<Done>>>,
     sender: crossbeam_channel::Sender<Message>,
+    /// The options every check starts from.
+    options: crate::Options,
 }
 
 fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
@@ -133,7 +140,8 @@ fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
 fn notified(shared: &Arc<Shared>, n: Notification) {
     match n.method.as_str() {
         note::DidOpenTextDocument::METHOD => {
-            let Ok(p) = serde_json::from_value::<lsp_types::DidOpenTextDocumentParams>(n.params) else {
+            let Ok(p) = serde_json::from_value::<lsp_types::DidOpenTextDocumentParams>(n.params)
+            else {
                 return;
             };
             let d = p.text_document;
@@ -142,7 +150,11 @@ fn notified(shared: &Arc<Shared>, n: Notification) {
                 .as_ref()
                 .map_or_else(|| d.uri.as_str().to_string(), |p| p.display().to_string());
             let kind = if matches!(d.language_id.as_str(), "markdown" | "latex" | "tex") {
-                Kind::of(if d.language_id == "markdown" { "x.md" } else { "x.tex" })
+                Kind::of(if d.language_id == "markdown" {
+                    "x.md"
+                } else {
+                    "x.tex"
+                })
             } else {
                 Kind::of(&name)
             };
@@ -161,7 +173,8 @@ fn notified(shared: &Arc<Shared>, n: Notification) {
             schedule(shared, &d.uri);
         }
         note::DidChangeTextDocument::METHOD => {
-            let Ok(p) = serde_json::from_value::<lsp_types::DidChangeTextDocumentParams>(n.params) else {
+            let Ok(p) = serde_json::from_value::<lsp_types::DidChangeTextDocumentParams>(n.params)
+            else {
                 return;
             };
             let uri = p.text_document.uri;
@@ -200,7 +213,8 @@ fn notified(shared: &Arc<Shared>, n: Notification) {
             }
         }
         note::DidCloseTextDocument::METHOD => {
-            let Ok(p) = serde_json::from_value::<lsp_types::DidCloseTextDocumentParams>(n.params) else {
+            let Ok(p) = serde_json::from_value::<lsp_types::DidCloseTextDocumentParams>(n.params)
+            else {
                 return;
             };
             let uri = p.text_document.uri;
@@ -282,7 +296,13 @@ fn checker(shared: &Arc<Shared>, uri: &Uri) {
             }
         };
         let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            world::check(&job.name, &job.text, job.kind, &job.open, &job.cancel)
+            world::check(
+                &job.name,
+                &job.text,
+                job.kind,
+                (&job.open, &job.cancel),
+                &shared.options,
+            )
         }));
         let mut docs = lock(&shared.docs);
         let Some(doc) = docs.get_mut(uri) else {
@@ -309,7 +329,12 @@ fn checker(shared: &Arc<Shared>, uri: &Uri) {
     }
 }
 
-fn publish(shared: &Shared, uri: Uri, diagnostics: Vec<lsp_types::Diagnostic>, version: Option<i32>) {
+fn publish(
+    shared: &Shared,
+    uri: Uri,
+    diagnostics: Vec<lsp_types::Diagnostic>,
+    version: Option<i32>,
+) {
     let params = PublishDiagnosticsParams {
         uri,
         diagnostics,
@@ -327,7 +352,13 @@ fn answer(shared: &Shared, r: Request) -> Response {
         req::GotoDefinition::METHOD => params(r).map(|p| to_json(definition(shared, p))),
         req::DocumentSymbolRequest::METHOD => params(r).map(|p| to_json(outline(shared, p))),
         req::CodeActionRequest::METHOD => params(r).map(|p| to_json(code_actions(shared, p))),
-        _ => return Response::new_err(id, ErrorCode::MethodNotFound as i32, format!("rigor lsp does not answer {}", r.method)),
+        _ => {
+            return Response::new_err(
+                id,
+                ErrorCode::MethodNotFound as i32,
+                format!("rigor lsp does not answer {}", r.method),
+            )
+        }
     };
     match result {
         Ok(v) => Response::new_ok(id, v),
@@ -372,7 +403,10 @@ fn hover_at(shared: &Shared, p: lsp_types::HoverParams) -> Option<Hover> {
     })
 }
 
-fn definition(shared: &Shared, p: lsp_types::GotoDefinitionParams) -> Option<GotoDefinitionResponse> {
+fn definition(
+    shared: &Shared,
+    p: lsp_types::GotoDefinitionParams,
+) -> Option<GotoDefinitionResponse> {
     let at = p.text_document_position_params;
     let uri = at.text_document.uri;
     let (done, path, open) = finished(shared, &uri)?;
@@ -407,10 +441,17 @@ fn outline(shared: &Shared, p: lsp_types::DocumentSymbolParams) -> Option<Docume
         return None;
     };
     let lines = Lines::new(&r.source);
-    Some(DocumentSymbolResponse::Nested(nav::outline(r.ast.as_ref()?, &r.source, &lines)))
+    Some(DocumentSymbolResponse::Nested(nav::outline(
+        r.ast.as_ref()?,
+        &r.source,
+        &lines,
+    )))
 }
 
-fn code_actions(shared: &Shared, p: lsp_types::CodeActionParams) -> Option<Vec<CodeActionOrCommand>> {
+fn code_actions(
+    shared: &Shared,
+    p: lsp_types::CodeActionParams,
+) -> Option<Vec<CodeActionOrCommand>> {
     let uri = p.text_document.uri;
     let (done, path, open) = finished(shared, &uri)?;
     // Edits are offsets into the text checked: offered only while it is the text shown.
@@ -423,6 +464,10 @@ fn code_actions(shared: &Shared, p: lsp_types::CodeActionParams) -> Option<Vec<C
     };
     let want = actions::span_of(&r.source, p.range);
     let found = actions::actions(r, want, &uri, path.as_deref(), &open);
-    Some(found.into_iter().map(CodeActionOrCommand::CodeAction).collect())
+    Some(
+        found
+            .into_iter()
+            .map(CodeActionOrCommand::CodeAction)
+            .collect(),
+    )
 }
-

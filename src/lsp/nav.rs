@@ -193,7 +193,11 @@ pub fn outline(file: &File, text: &str, lines: &Lines<'_>) -> Vec<DocumentSymbol
     }
     for item in &file.items {
         let sym = match item {
-            Item::Heading { level, text: t, span } => {
+            Item::Heading {
+                level,
+                text: t,
+                span,
+            } => {
                 while stack.last().is_some_and(|(l, _)| *l >= *level) {
                     close(&mut stack, &mut top);
                 }
@@ -250,7 +254,10 @@ fn stmt_symbol(s: &Stmt, text: &str, lines: &Lines<'_>) -> Option<DocumentSymbol
     };
     let mut sym = symbol(&name, kind, lines.range(s.span));
     sym.detail = Some(if label.is_some() {
-        format!("{what}: {}", line.strip_prefix(what).unwrap_or(&line).trim())
+        format!(
+            "{what}: {}",
+            line.strip_prefix(what).unwrap_or(&line).trim()
+        )
     } else {
         what.to_string()
     });
@@ -263,7 +270,11 @@ fn stmt_symbol(s: &Stmt, text: &str, lines: &Lines<'_>) -> Option<DocumentSymbol
 #[allow(deprecated)] // `deprecated` is a field the protocol still requires.
 fn symbol(name: &str, kind: SymbolKind, range: lsp_types::Range) -> DocumentSymbol {
     DocumentSymbol {
-        name: if name.is_empty() { "?".into() } else { name.into() },
+        name: if name.is_empty() {
+            "?".into()
+        } else {
+            name.into()
+        },
         detail: None,
         kind,
         tags: None,

@@ -36,7 +36,10 @@ impl<'a> Lines<'a> {
 
     /// The range of a span.
     pub fn range(&self, span: Span) -> Range {
-        Range::new(self.position(span.start), self.position(span.end.max(span.start)))
+        Range::new(
+            self.position(span.start),
+            self.position(span.end.max(span.start)),
+        )
     }
 
     /// The byte offset of a position: a column past the end of its line is the line's
@@ -62,10 +65,7 @@ impl<'a> Lines<'a> {
     /// The byte range of 0-based line `line`, without its line ending.
     pub fn line_span(&self, line: usize) -> Span {
         let start = self.starts.get(line).copied().unwrap_or(self.text.len());
-        let end = self
-            .starts
-            .get(line + 1)
-            .map_or(self.text.len(), |e| e - 1);
+        let end = self.starts.get(line + 1).map_or(self.text.len(), |e| e - 1);
         let end = if self.text[..end.max(start)].ends_with('\r') {
             end - 1
         } else {
@@ -149,7 +149,10 @@ mod tests {
         }
         assert_eq!(lines.offset(Position::new(0, 99)), text.find('\n').unwrap());
         assert_eq!(lines.offset(Position::new(9, 0)), text.len());
-        assert_eq!(&text[lines.line_span(1).start..lines.line_span(1).end], "𝑥 = 1");
+        assert_eq!(
+            &text[lines.line_span(1).start..lines.line_span(1).end],
+            "𝑥 = 1"
+        );
     }
 
     #[test]

@@ -27,7 +27,10 @@ impl Kind {
     /// The kind of a document called `name`.
     pub fn of(name: &str) -> Kind {
         let lower = name.to_ascii_lowercase();
-        if [".md", ".markdown", ".tex"].iter().any(|e| lower.ends_with(e)) {
+        if [".md", ".markdown", ".tex"]
+            .iter()
+            .any(|e| lower.ends_with(e))
+        {
             Kind::Notes(DocKind::of(name))
         } else {
             Kind::Derivation
@@ -82,7 +85,9 @@ impl Resolver for Overlay<'_> {
         let Some(root) = &self.root else {
             return Err(ImportError::NotFound {
                 path: path.into(),
-                reason: Some("the document is not a file, so it has no folder to import from".into()),
+                reason: Some(
+                    "the document is not a file, so it has no folder to import from".into(),
+                ),
             });
         };
         if Path::new(path).is_absolute() {
@@ -151,20 +156,27 @@ impl Drop for Running {
     }
 }
 
-/// The options of a check in the editor: the command line's, on a clock `cancel` stops.
-pub fn options() -> Options {
+/// The options of a check in the editor: the server's, on a clock `cancel` stops.
+fn options(base: &Options) -> Options {
     Options {
         clock: Some(cancellable),
-        ..Options::default()
+        ..base.clone()
     }
 }
 
-/// Checks the document `path` (its text `text`) as what it is, imports from `open` and
-/// the disk; `cancel` stops it early (its outcome is then of no use).
-pub fn check(path: &str, text: &str, kind: Kind, open: &Open, cancel: &Cancel) -> Outcome {
+/// Checks the document `path` (its text `text`) as what it is, with the options `base`
+/// (their clock replaced), imports from `open` and the disk; `cancel` stops it early
+/// (its outcome is then of no use).
+pub fn check(
+    path: &str,
+    text: &str,
+    kind: Kind,
+    (open, cancel): (&Open, &Cancel),
+    base: &Options,
+) -> Outcome {
     RUNNING.with(|r| *r.borrow_mut() = Some((cancel.clone(), 0)));
     let _running = Running;
-    let opts = options();
+    let opts = options(base);
     match kind {
         Kind::Notes(k) => Outcome::Notes(crate::lint::lint(path, text, k, &opts)),
         Kind::Derivation => {
@@ -209,17 +221,28 @@ mod tests {
         let lib = dir.join("lib.deriv");
         std::fs::write(&lib, "symbols a > 0\nclaim [A] a = a\n").unwrap();
         let mut open = Open::new();
-        open.insert(key(&lib), Arc::new("symbols a > 0\nclaim [B] 2 a = a + a\n".into()));
+        open.insert(
+            key(&lib),
+            Arc::new("symbols a > 0\nclaim [B] 2 a = a + a\n".into()),
+        );
         let main = dir.join("main.deriv");
         let text = "symbols a > 0\nuse [B] from \"lib.deriv\"\nclaim a + a = 2 a by [B]\n";
         let cancel: Cancel = Arc::new(AtomicBool::new(false));
-        let out = check(&main.display().to_string(), text, Kind::Derivation, &open, &cancel);
+        let name = main.display().to_string();
+        let base = Options::default();
+        let out = check(&name, text, Kind::Derivation, (&open, &cancel), &base);
         let Outcome::Derivation(r) = out else {
             panic!("a derivation")
         };
         assert!(r.ok(), "{:?}", r.diagnostics);
         // Without the open document, the file on disk has no [B].
-        let out = check(&main.display().to_string(), text, Kind::Derivation, &Open::new(), &cancel);
+        let out = check(
+            &name,
+            text,
+            Kind::Derivation,
+            (&Open::new(), &cancel),
+            &base,
+        );
         let Outcome::Derivation(r) = out else {
             panic!("a derivation")
         };

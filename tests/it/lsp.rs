@@ -190,29 +190,59 @@ fn find(text: &str, prefix: &str, needle: &str) -> (u32, u32) {
 fn diagnostics_follow_the_text_and_the_server_exits_cleanly() {
     let (mut s, init) = Server::start();
     let caps = &init["capabilities"];
-    for cap in ["hoverProvider", "definitionProvider", "documentSymbolProvider", "codeActionProvider"] {
+    for cap in [
+        "hoverProvider",
+        "definitionProvider",
+        "documentSymbolProvider",
+        "codeActionProvider",
+    ] {
         assert_eq!(caps[cap], json!(true), "{cap} in {init}");
     }
     let (u, text) = (uri("pendulum.deriv"), fixture("pendulum.deriv"));
     s.open(&u, "rigor", &text);
     let p = s.diagnostics(&u);
     let (torque, col) = find(&text, "claim [torque]", "sin(theta) by");
-    assert_eq!(lines_and_codes(&p), vec![(u64::from(torque), "E0301".to_string())], "{p}");
+    assert_eq!(
+        lines_and_codes(&p),
+        vec![(u64::from(torque), "E0301".to_string())],
+        "{p}"
+    );
     let d = &p["diagnostics"][0];
     assert_eq!(d["severity"], 1, "an error: {d}");
     assert_eq!(d["source"], "rigor");
-    assert!(d["message"].as_str().unwrap().starts_with("this step does not hold"), "{d}");
+    assert!(
+        d["message"]
+            .as_str()
+            .unwrap()
+            .starts_with("this step does not hold"),
+        "{d}"
+    );
     // The notes travel as related information: both sides, the counterexample, and the
     // fact used, at the line that states it.
-    let related: Vec<&Value> = d["relatedInformation"].as_array().expect("related").iter().collect();
-    let said = |w: &str| related.iter().any(|r| r["message"].as_str().unwrap().contains(w));
-    for w in ["1/2 × the right side", "left side:", "right side:", "counterexample: at"] {
+    let related: Vec<&Value> = d["relatedInformation"]
+        .as_array()
+        .expect("related")
+        .iter()
+        .collect();
+    let said = |w: &str| {
+        related
+            .iter()
+            .any(|r| r["message"].as_str().unwrap().contains(w))
+    };
+    for w in [
+        "1/2 × the right side",
+        "left side:",
+        "right side:",
+        "counterexample: at",
+    ] {
         assert!(said(w), "{w} in {related:?}");
     }
     let (moment, _) = find(&text, "given [moment]", "M");
     assert!(
-        related.iter().any(|r| r["message"] == "[moment]: a fact used"
-            && r["location"]["range"]["start"]["line"] == moment),
+        related
+            .iter()
+            .any(|r| r["message"] == "[moment]: a fact used"
+                && r["location"]["range"]["start"]["line"] == moment),
         "{related:?}"
     );
     // Typing the missing `/2` (an incremental change) fixes the step.
@@ -240,7 +270,10 @@ fn hovers_and_definitions_reach_across_two_files() {
     let (line, col) = find(&text, "claim [inertia]", "[IO]");
     let h = s.at("textDocument/hover", &main, line, col + 1);
     let shown = h["contents"]["value"].as_str().expect("markdown");
-    assert!(shown.contains("claim [IO] m L^2/12 + m (L/2)^2 = m L^2/3"), "{shown}");
+    assert!(
+        shown.contains("claim [IO] m L^2/12 + m (L/2)^2 = m L^2/3"),
+        "{shown}"
+    );
     assert!(shown.contains("lib.deriv"), "{shown}");
     // …and the same hover on the link shows its verdict and both sides' normal forms.
     assert!(shown.contains("`=` link: verified (identity)"), "{shown}");
@@ -250,7 +283,10 @@ fn hovers_and_definitions_reach_across_two_files() {
     let (line, col) = find(&text, "given [moment]", "theta");
     let shown = s.at("textDocument/hover", &main, line, col + 2)["contents"]["value"].clone();
     let shown = shown.as_str().expect("markdown");
-    assert!(shown.contains("time theta") && shown.contains("function of time"), "{shown}");
+    assert!(
+        shown.contains("time theta") && shown.contains("function of time"),
+        "{shown}"
+    );
     assert!(shown.contains("unit: `rad`"), "{shown}");
     let (line, col) = find(&text, "given [moment]", "g L");
     let shown = s.at("textDocument/hover", &main, line, col)["contents"]["value"].clone();
@@ -258,7 +294,13 @@ fn hovers_and_definitions_reach_across_two_files() {
     // A label of this file: the fact it names.
     let (line, col) = find(&text, "claim [torque]", "[moment]");
     let shown = s.at("textDocument/hover", &main, line, col + 2)["contents"]["value"].clone();
-    assert!(shown.as_str().unwrap().contains("given [moment] M = -m g L/2 sin(theta)"), "{shown}");
+    assert!(
+        shown
+            .as_str()
+            .unwrap()
+            .contains("given [moment] M = -m g L/2 sin(theta)"),
+        "{shown}"
+    );
     // Go to definition: a label imported, from its `by` and from its `use`, lands on the
     // claim in the other file; a label of this file, and a name, in this one.
     let (io_line, _) = find(&fixture("lib.deriv"), "claim [IO]", "");
@@ -271,17 +313,32 @@ fn hovers_and_definitions_reach_across_two_files() {
     let (line, col) = find(&text, "claim [torque]", "[moment]");
     let loc = s.at("textDocument/definition", &main, line, col + 2);
     assert_eq!(loc["uri"], main);
-    assert_eq!(loc["range"]["start"]["line"], find(&text, "given [moment]", "").0);
+    assert_eq!(
+        loc["range"]["start"]["line"],
+        find(&text, "given [moment]", "").0
+    );
     let (line, col) = find(&text, "claim [torque]", "g L");
     let loc = s.at("textDocument/definition", &main, line, col);
-    assert_eq!(loc["range"]["start"]["line"], find(&text, "symbols m g L", "").0, "{loc}");
+    assert_eq!(
+        loc["range"]["start"]["line"],
+        find(&text, "symbols m g L", "").0,
+        "{loc}"
+    );
     // The outline: the headings, with the statements under them.
-    let outline = s.request("textDocument/documentSymbol", json!({"textDocument": {"uri": main}}));
+    let outline = s.request(
+        "textDocument/documentSymbol",
+        json!({"textDocument": {"uri": main}}),
+    );
     let top = &outline[0];
     assert_eq!(top["name"], "A rod swinging about its end", "{outline}");
     let section = &top["children"][0];
     assert_eq!(section["name"], "Moments about the pivot", "{outline}");
-    let names: Vec<&str> = section["children"].as_array().unwrap().iter().map(|c| c["name"].as_str().unwrap()).collect();
+    let names: Vec<&str> = section["children"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["name"].as_str().unwrap())
+        .collect();
     assert_eq!(names, ["[moment]", "[inertia]", "[torque]"], "{outline}");
     assert!(s.stop().success());
 }
@@ -307,7 +364,10 @@ fn fix(s: &mut Server, name: &str, text: &str, title: &str) -> (String, Value) {
         .find(|a| a["title"].as_str().unwrap().contains(title))
         .unwrap_or_else(|| panic!("{name}: a fix `{title}` in {actions}"))
         .clone();
-    let mut edits = action["edit"]["changes"][&u].as_array().expect("edits").clone();
+    let mut edits = action["edit"]["changes"][&u]
+        .as_array()
+        .expect("edits")
+        .clone();
     // Applied from the end, so that earlier offsets stay right.
     edits.sort_by_key(|e| {
         let start = &e["range"]["start"];
@@ -345,8 +405,16 @@ fn quick_fixes_apply_what_the_diagnostics_suggest() {
     assert_eq!(lines_and_codes(&after), vec![], "{after}");
     // A derivative of a symbol declared constant.
     let prime = read("tests/check/fail/dym_prime_on_constant.deriv");
-    let (fixed, after) = fix(&mut s, "prime.deriv", &prime, "Declare `theta` with `time theta`");
-    assert!(fixed.contains("\ntime theta\n") && !fixed.contains("symbols theta"), "{fixed}");
+    let (fixed, after) = fix(
+        &mut s,
+        "prime.deriv",
+        &prime,
+        "Declare `theta` with `time theta`",
+    );
+    assert!(
+        fixed.contains("\ntime theta\n") && !fixed.contains("symbols theta"),
+        "{fixed}"
+    );
     assert_eq!(lines_and_codes(&after), vec![], "{after}");
     // A label mistyped in `by`.
     let label = read("tests/check/fail/kind_by_unknown_label.deriv");
@@ -354,8 +422,15 @@ fn quick_fixes_apply_what_the_diagnostics_suggest() {
     assert!(fixed.contains("by [Fx]"), "{fixed}");
     assert_eq!(lines_and_codes(&after), vec![], "{after}");
     // A `use` of a label the imported file does not have: the one it has.
-    let text = fixture("pendulum.deriv").replace("use [IO]", "use [I0]").replace("by [IO]", "by [I0]");
-    let (fixed, _) = fix(&mut s, "pendulum_typo.deriv", &text, "Use [IO], which \"lib.deriv\" has");
+    let text = fixture("pendulum.deriv")
+        .replace("use [IO]", "use [I0]")
+        .replace("by [IO]", "by [I0]");
+    let (fixed, _) = fix(
+        &mut s,
+        "pendulum_typo.deriv",
+        &text,
+        "Use [IO], which \"lib.deriv\" has",
+    );
     assert!(fixed.contains("use [IO] from"), "{fixed}");
     assert!(s.stop().success());
 }
@@ -367,7 +442,11 @@ fn notes_get_lint_diagnostics_at_their_lines() {
     s.open(&u, "markdown", &text);
     let p = s.diagnostics(&u);
     let (line, _) = find(&text, "I_O =", "");
-    assert_eq!(lines_and_codes(&p), vec![(u64::from(line), "E0301".to_string())], "{p}");
+    assert_eq!(
+        lines_and_codes(&p),
+        vec![(u64::from(line), "E0301".to_string())],
+        "{p}"
+    );
     assert_eq!(p["diagnostics"][0]["severity"], 1, "{p}");
     assert!(s.stop().success());
 }
@@ -382,7 +461,9 @@ fn a_slow_document_does_not_hold_up_another() {
     let (slow, fast) = (uri("slow.deriv"), uri("pendulum.deriv"));
     s.open(&slow, "rigor", &fixture("slow.deriv"));
     s.open(&fast, "rigor", &fixture("pendulum.deriv"));
-    let first = s.wait("diagnostics", |m| m["method"] == "textDocument/publishDiagnostics");
+    let first = s.wait("diagnostics", |m| {
+        m["method"] == "textDocument/publishDiagnostics"
+    });
     assert_eq!(first["params"]["uri"], fast, "{first}");
     let full = json!({"text": "symbols x > 0\nclaim x + x = 2 x\n"});
     s.notify(
@@ -390,7 +471,76 @@ fn a_slow_document_does_not_hold_up_another() {
         json!({"textDocument": {"uri": slow, "version": 2}, "contentChanges": [full]}),
     );
     let p = s.diagnostics(&slow);
-    assert_eq!(p["version"], 2, "the stale version's check was stopped: {p}");
+    assert_eq!(
+        p["version"], 2,
+        "the stale version's check was stopped: {p}"
+    );
     assert_eq!(lines_and_codes(&p), vec![], "{p}");
     assert!(s.stop().success());
+}
+
+/// The VS Code extension's grammar: it names the language's own statement keywords (as
+/// `docs/language.md` lists them), the extension points at it, and — where node is
+/// installed — the engine VS Code uses compiles every pattern and scopes a sample
+/// (`editors/vscode/test/grammar.js`, after `npm ci` if it has not run).
+#[test]
+fn the_vscode_grammar_compiles_and_scopes_a_derivation() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = root.join("editors/vscode");
+    let read = |p: &Path| std::fs::read_to_string(p).expect("readable");
+    let grammar: Value =
+        serde_json::from_str(&read(&dir.join("syntaxes/deriv.tmLanguage.json"))).expect("JSON");
+    assert_eq!(grammar["scopeName"], "source.rigor");
+    let package: Value = serde_json::from_str(&read(&dir.join("package.json"))).expect("JSON");
+    let contributed = &package["contributes"]["grammars"][0];
+    assert_eq!(contributed["scopeName"], "source.rigor");
+    assert_eq!(contributed["path"], "./syntaxes/deriv.tmLanguage.json");
+    assert_eq!(
+        package["contributes"]["languages"][0]["extensions"][0],
+        ".deriv"
+    );
+    // Every statement keyword of the language is one the grammar's statement rules name.
+    let language = read(&root.join("docs/language.md"));
+    let row = language
+        .lines()
+        .find(|l| l.starts_with("| a statement |"))
+        .expect("the table of lines in docs/language.md");
+    let keywords: Vec<&str> = row.split('`').skip(1).step_by(2).collect();
+    assert!(keywords.len() >= 12, "{row}");
+    let rules = grammar["repository"]["statement"]["patterns"].to_string();
+    for k in keywords {
+        assert!(
+            rules.contains(&format!("|{k}|"))
+                || rules.contains(&format!("({k}|"))
+                || rules.contains(&format!("|{k})")),
+            "`{k}` in {rules}"
+        );
+    }
+    if Command::new("node").arg("--version").output().is_err() {
+        eprintln!("skipped: compiling the grammar needs node, which is not installed");
+        return;
+    }
+    if !dir.join("node_modules/vscode-textmate").is_dir() {
+        let out = Command::new("npm")
+            .args(["ci", "--no-audit", "--no-fund"])
+            .current_dir(&dir)
+            .output()
+            .expect("npm runs");
+        assert!(
+            out.status.success(),
+            "npm ci: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let out = Command::new("node")
+        .arg("test/grammar.js")
+        .current_dir(&dir)
+        .output()
+        .expect("node runs");
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success() && said.contains("scopes as expected"),
+        "{said}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
