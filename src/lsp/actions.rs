@@ -211,3 +211,19 @@ pub fn span_of(text: &str, range: Range) -> Span {
     let at = |p: Position| lines.offset(p);
     Span::new(at(range.start), at(range.end))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn suggestions_are_read_between_their_marks() {
+        let glued = "did you mean `m g d`? (a product needs a space between its factors)";
+        assert_eq!(between(glued, "did you mean `", "`?"), Some("m g d"));
+        let time = "`theta` is declared with `symbols`, so it has no time derivative: declare it with `time theta`";
+        assert_eq!(between(time, "with `time ", "`"), Some("theta"));
+        assert_eq!(between("did you mean [Fx]?", "did you mean [", "]?"), Some("Fx"));
+        assert_eq!(between("declare it with `symbols`, `time` or `unknowns`", "with `time ", "`"), None);
+        assert_eq!(between("did you mean ``?", "did you mean `", "`?"), None);
+    }
+}

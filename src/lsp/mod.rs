@@ -85,8 +85,20 @@ fn serve(conn: &Connection, options: crate::Options) -> Result<(), lsp_server::P
                 if conn.handle_shutdown(&r)? {
                     break;
                 }
-                let resp = answer(&shared, r);
-                let _ = conn.sender.send(Message::Response(resp));
+                // Answered on a thread of its own: an outline of a long document does
+                // not hold up the next keystroke.
+                let (id, shared2) = (r.id.clone(), shared.clone());
+                let spawned = std::thread::Builder::new()
+                    .name("rigor-request".into())
+                    .spawn(move || {
+                        let resp = answer(&shared2, r);
+                        let _ = shared2.sender.send(Message::Response(resp));
+                    });
+                if spawned.is_err() {
+                    let why = "rigor lsp could not start a thread".to_string();
+                    let resp = Response::new_err(id, ErrorCode::InternalError as i32, why);
+                    let _ = conn.sender.send(Message::Response(resp));
+                }
             }
             Message::Notification(n) => notified(&shared, n),
             Message::Response(_) => {}

@@ -284,3 +284,41 @@ fn symbol(name: &str, kind: SymbolKind, range: lsp_types::Range) -> DocumentSymb
         children: None,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_word_under_the_cursor_keeps_its_primes() {
+        let text = "claim theta'' = -(g/L) sin(theta)";
+        let at = text.find("ta''").unwrap();
+        assert_eq!(word_at(text, at), Some(("theta''".into(), (6, 13))));
+        // At the end of a word, and on a function name.
+        assert_eq!(word_at(text, 13).map(|w| w.0).as_deref(), Some("theta''"));
+        let at = text.find("sin").unwrap() + 1;
+        assert_eq!(word_at(text, at).map(|w| w.0).as_deref(), Some("sin"));
+        // Not a name: a number, an operator.
+        assert_eq!(word_at("x = 12", 5), None);
+        assert_eq!(word_at("x = 12", 2), None);
+    }
+
+    #[test]
+    fn the_outline_nests_statements_under_their_headings() {
+        let text = "# Title\nsymbols m > 0\n## One\ngiven [a] m = m\nclaim [b] m = m\n## Two\nclaim m + m = 2 m\nbody rod: mass m, coordinates y\n";
+        let file = crate::syntax::parse_file(text, &Default::default()).unwrap();
+        let out = outline(&file, text, &Lines::new(text));
+        assert_eq!(out.len(), 1);
+        let names = |s: &DocumentSymbol| -> Vec<String> {
+            s.children.iter().flatten().map(|c| c.name.clone()).collect()
+        };
+        assert_eq!(out[0].name, "Title");
+        assert_eq!(names(&out[0]), ["One", "Two"]);
+        let sections = out[0].children.as_ref().unwrap();
+        assert_eq!(names(&sections[0]), ["[a]", "[b]"]);
+        assert_eq!(names(&sections[1]), ["claim m + m = 2 m", "rod"]);
+        // A heading's range runs to the end of its last statement.
+        assert_eq!(sections[0].range.end.line, 4);
+        assert_eq!(out[0].range.end.line, 7);
+    }
+}
