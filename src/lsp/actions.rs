@@ -222,8 +222,18 @@ mod tests {
         assert_eq!(between(glued, "did you mean `", "`?"), Some("m g d"));
         let time = "`theta` is declared with `symbols`, so it has no time derivative: declare it with `time theta`";
         assert_eq!(between(time, "with `time ", "`"), Some("theta"));
-        assert_eq!(between("did you mean [Fx]?", "did you mean [", "]?"), Some("Fx"));
-        assert_eq!(between("declare it with `symbols`, `time` or `unknowns`", "with `time ", "`"), None);
+        assert_eq!(
+            between("did you mean [Fx]?", "did you mean [", "]?"),
+            Some("Fx")
+        );
+        assert_eq!(
+            between(
+                "declare it with `symbols`, `time` or `unknowns`",
+                "with `time ",
+                "`"
+            ),
+            None
+        );
         assert_eq!(between("did you mean ``?", "did you mean `", "`?"), None);
     }
 }

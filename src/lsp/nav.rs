@@ -310,7 +310,11 @@ mod tests {
         let out = outline(&file, text, &Lines::new(text));
         assert_eq!(out.len(), 1);
         let names = |s: &DocumentSymbol| -> Vec<String> {
-            s.children.iter().flatten().map(|c| c.name.clone()).collect()
+            s.children
+                .iter()
+                .flatten()
+                .map(|c| c.name.clone())
+                .collect()
         };
         assert_eq!(out[0].name, "Title");
         assert_eq!(names(&out[0]), ["One", "Two"]);

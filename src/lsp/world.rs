@@ -42,7 +42,7 @@ impl Kind {
 #[derive(Clone, Debug)]
 pub enum Outcome {
     /// A derivation's report.
-    Derivation(FileReport),
+    Derivation(Box<FileReport>),
     /// Notes' report.
     Notes(LintReport),
 }
@@ -190,7 +190,7 @@ pub fn check(
                 root,
                 max_file_size: opts.max_file_size,
             };
-            Outcome::Derivation(check_source(path, text, &opts, &resolver))
+            Outcome::Derivation(Box::new(check_source(path, text, &opts, &resolver)))
         }
     }
 }
