@@ -27,6 +27,8 @@ pub mod guard;
 pub mod interval;
 pub mod lint;
 pub mod lower;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod lsp;
 pub mod mark;
 pub mod normal;
 pub mod render;

@@ -156,6 +156,9 @@ enum Command {
         #[arg(long, default_value_t = 30.0)]
         budget: f64,
     },
+    /// Serve editors: the Language Server Protocol over standard input and output
+    /// (diagnostics as you type, hovers, go to definition, the outline, quick fixes).
+    Lsp,
     /// Write a derivation as a Markdown worked solution.
     Markdown {
         /// The derivation file, or a folder: one book of all its files (in the order of
@@ -205,11 +208,13 @@ fn main() -> ExitCode {
     let timeout = seconds(cli.timeout, 10.0);
     // The work outside `check_source` (`simplify`, `equiv`, the worked solutions' steps)
     // has one budget; `check_source` times each claim with the `Options` it is given.
-    let _deadline = rigor::normal::limits::until(if matches!(cli.command, Command::Check { .. }) {
-        None
-    } else {
-        rigor::clock::Deadline::after(timeout, rigor::clock::system())
-    });
+    let _deadline = rigor::normal::limits::until(
+        if matches!(cli.command, Command::Check { .. } | Command::Lsp) {
+            None
+        } else {
+            rigor::clock::Deadline::after(timeout, rigor::clock::system())
+        },
+    );
     let code = match cli.command {
         Command::Simplify {
             expr,
@@ -261,6 +266,18 @@ fn main() -> ExitCode {
             },
             &opts,
         ),
+        Command::Lsp => match rigor::lsp::run(rigor::Options {
+            parse: opts,
+            limits: rigor::normal::limits::current(),
+            timeout,
+            ..rigor::Options::default()
+        }) {
+            Ok(()) => 0,
+            Err(e) => {
+                eprintln!("error: rigor lsp: {e}");
+                1
+            }
+        },
         Command::Lint { docs, format } => cli::lint(&docs, format, timeout, &opts),
         Command::Mark {
             reference,

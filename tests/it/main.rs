@@ -18,6 +18,7 @@ mod library;
 mod lint;
 mod lint_display;
 mod lint_readings;
+mod lsp;
 mod mark;
 mod normal;
 mod props;
