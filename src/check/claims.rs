@@ -16,6 +16,7 @@ use crate::normal::print::plain;
 use crate::normal::Rat;
 use crate::syntax::ast::{Assign, By, Chain, Expr, ExprKind, RelOp, Span};
 use crate::units::check::DimV;
+use std::collections::HashSet;
 
 /// An equation a verified link adds to the facts, with its conditions.
 type NewFact = (Rat, Vec<Condition>);
@@ -88,6 +89,8 @@ impl Checker<'_, '_> {
         };
         let (mut prev, mut prev_divs) = (first, divs);
         let mut new_facts: Vec<NewFact> = Vec::new();
+        // What the claim's equations would bring into the facts (none with `where`).
+        let mut reach = Some(Vec::new());
         // The last link, if it failed: its index, left side, diagnostic and span.
         let mut odd: Option<(usize, Rat, usize, Span)> = None;
         for (i, link) in chain.links.iter().enumerate() {
@@ -103,6 +106,7 @@ impl Checker<'_, '_> {
                 } else {
                     Status::Error
                 };
+                reach = None;
                 claim.links.push(LinkReport {
                     span,
                     op: link.op,
@@ -147,49 +151,83 @@ impl Checker<'_, '_> {
                 Some(d) => Err(d),
                 None => self.check_link(&input),
             }
-            .unwrap_or_else(|d| self.failed_link(d, link.by.as_ref().map(|b| &b.0), span));
+            .unwrap_or_else(|d| {
+                let mut about = Vec::new();
+                quantities(&prev, &mut about);
+                quantities(&rhs, &mut about);
+                self.failed_link(d, link.by.as_ref().map(|b| &b.0), span, &about)
+            });
             let status = self.odd_link(&mut odd, (i, link, &prev, &rhs), before, status);
+            if let Some(r) = reach
+                .as_mut()
+                .filter(|_| link.op == RelOp::Eq && subs.is_empty())
+            {
+                quantities(&prev, r);
+                quantities(&rhs, r);
+            }
             // With `where`, a claim is a special case and adds nothing general.
             if status.is_verified() && link.op == RelOp::Eq && subs.is_empty() {
                 if let Ok(v) = prev.sub(&rhs) {
                     new_facts.push((v, self.fact_conditions(all_divs)));
                 }
             }
-            let link_units = dims.as_ref().and_then(|d| match (d.get(i), d.get(i + 1)) {
+            let units = dims.as_ref().and_then(|d| match (d.get(i), d.get(i + 1)) {
                 (Some(Ok(DimV::D(a))), Some(Ok(b))) if DimV::D(a.clone()).agrees(b) => {
                     Some(a.si().to_string())
                 }
                 _ => None,
             });
-            // What the link got wrong, from the one error it reported.
-            let mistake = match status {
-                Status::Failed | Status::Undecided => self
-                    .report
-                    .diagnostics
-                    .get(before..)
-                    .and_then(|ds| ds.iter().find_map(|d| d.mistake.clone())),
-                _ => None,
-            };
-            claim.links.push(LinkReport {
-                span,
-                op: link.op,
-                lhs: Some(plain(&prev)),
-                rhs: Some(plain(&rhs)),
-                status,
-                units: link_units,
-                mistake,
-            });
+            let report = self.link_report((span, link.op), (&prev, &rhs), status, before);
+            claim.links.push(LinkReport { units, ..report });
             prev = rhs;
             prev_divs = divs;
         }
-        self.add_claim_facts(&label, span, new_facts, claim.verified());
+        self.add_claim_facts(&label, span, (new_facts, reach), claim.verified());
         self.report.claims.push(claim);
+    }
+
+    /// The report of a checked link (its units left out); what it got wrong comes from
+    /// the one error it reported, among the diagnostics from `before` on.
+    fn link_report(
+        &self,
+        (span, op): (Span, RelOp),
+        (lhs, rhs): (&Rat, &Rat),
+        status: Status,
+        before: usize,
+    ) -> LinkReport {
+        let mistake = match status {
+            Status::Failed | Status::Undecided => self
+                .report
+                .diagnostics
+                .get(before..)
+                .and_then(|ds| ds.iter().find_map(|d| d.mistake.clone())),
+            _ => None,
+        };
+        LinkReport {
+            span,
+            op,
+            lhs: Some(plain(lhs)),
+            rhs: Some(plain(rhs)),
+            status,
+            units: None,
+            mistake,
+        }
     }
 
     /// A link that did not hold: its diagnostic, unless it cites (`by [..]`) a step
     /// that did not hold either — then the mistake was reported there, and this link
     /// is not checked (a note says what it depends on).
-    fn failed_link(&mut self, d: crate::diag::Diagnostic, by: Option<&By>, span: Span) -> Status {
+    ///
+    /// `about` holds the quantities of the link (`quantities`): a step undecided on all
+    /// the facts in scope is put down to a failed step only if that step's equations
+    /// could reach them through the facts.
+    fn failed_link(
+        &mut self,
+        d: crate::diag::Diagnostic,
+        by: Option<&By>,
+        span: Span,
+        about: &[String],
+    ) -> Status {
         // A given that contradicted the others was set aside: a step on all the facts
         // in scope that fails now may hold with it (from contradictory facts anything
         // follows), so the contradiction is the one mistake.
@@ -215,11 +253,9 @@ impl Checker<'_, '_> {
             // Undecided on all the facts in scope, some of which failed earlier: the
             // missing fact is most likely one of those.
             None if matches!(d.code, Code::NotVerified) => {
-                let first = self
-                    .failed_labels
-                    .iter()
-                    .min_by_key(|(l, line)| (**line, *l));
-                let others = self.failed_labels.len().saturating_sub(1);
+                let needed = self.failed_needed(about);
+                let first = needed.iter().min_by_key(|(l, line)| (*line, l.clone()));
+                let others = needed.len().saturating_sub(1);
                 first
                     .map(|(l, line)| match others {
                         0 => Text::label_at(l, *line),
@@ -352,7 +388,7 @@ impl Checker<'_, '_> {
         &mut self,
         label: &Option<String>,
         span: Span,
-        new_facts: Vec<NewFact>,
+        (new_facts, reach): (Vec<NewFact>, Option<Vec<String>>),
         verified: bool,
     ) {
         let name = self.fact_name(label, span);
@@ -372,6 +408,9 @@ impl Checker<'_, '_> {
             } else if !verified {
                 let line = self.line(span);
                 self.failed_labels.insert(l.clone(), line);
+                if let Some(r) = reach {
+                    self.failed_reach.insert(l.clone(), r);
+                }
             }
         }
     }
@@ -518,6 +557,10 @@ impl Checker<'_, '_> {
     fn push_undecided_links(&mut self, mut claim: ClaimReport, chain: &Chain, status: Status) {
         if let Some(l) = &claim.label {
             self.failed_labels.insert(l.clone(), claim.line);
+            // A chain with no `=` would have brought no fact.
+            if !chain.links.iter().any(|k| k.op == RelOp::Eq) {
+                self.failed_reach.insert(l.clone(), Vec::new());
+            }
         }
         for (i, link) in chain.links.iter().enumerate() {
             let span = if i == 0 {
@@ -624,5 +667,84 @@ impl Checker<'_, '_> {
             );
         }
         Err(false)
+    }
+}
+
+impl Checker<'_, '_> {
+    /// The failed labels (with their lines) whose equations could have reached the
+    /// quantities `about` through the facts in scope: those that would have brought
+    /// no fact (a failed `~=`, a special case under `where`) or only facts about
+    /// quantities no chain of facts ties to `about` are left out.
+    pub(super) fn failed_needed(&self, about: &[String]) -> Vec<(String, usize)> {
+        let mut tied: HashSet<&str> = about.iter().map(String::as_str).collect();
+        let mut groups: Vec<Vec<String>> = self
+            .facts
+            .iter()
+            .map(|k| {
+                let mut q = Vec::new();
+                quantities(&k.fact.value, &mut q);
+                q
+            })
+            .collect();
+        groups.extend(self.failed_reach.values().cloned());
+        // Everything a chain of facts (or of failed equations) ties to `about`.
+        let mut grown = true;
+        while grown {
+            grown = false;
+            for g in &groups {
+                if g.iter().any(|q| tied.contains(q.as_str()))
+                    && g.iter().any(|q| !tied.contains(q.as_str()))
+                {
+                    tied.extend(g.iter().map(String::as_str));
+                    grown = true;
+                }
+            }
+        }
+        self.failed_labels
+            .iter()
+            .filter(|(l, _)| {
+                self.failed_reach
+                    .get(*l)
+                    .is_none_or(|r| r.iter().any(|q| tied.contains(q.as_str())))
+            })
+            .map(|(l, line)| (l.clone(), *line))
+            .collect()
+    }
+}
+
+/// The quantities `r` is about, by name, added to `out`: symbols with their primes
+/// dropped (`x''` is about `x`), a symbol at an instant by its symbol, and the moments
+/// of an abstract body by the body.
+pub(super) fn quantities(r: &Rat, out: &mut Vec<String>) {
+    for a in r.atoms() {
+        quantities_of_atom(a, out);
+    }
+}
+
+fn quantities_of_atom(a: AtomId, out: &mut Vec<String>) {
+    use crate::normal::atom::Atom;
+    let mut push = |q: String| {
+        if !out.contains(&q) {
+            out.push(q);
+        }
+    };
+    match &*atom::get(a) {
+        Atom::Sym(s) => push(s.trim_end_matches('\'').to_string()),
+        Atom::At(s, u) => {
+            push(s.trim_end_matches('\'').to_string());
+            quantities(u, out);
+        }
+        Atom::Moment(body, _) => push(format!("\u{1}body {body}")),
+        Atom::Pi => {}
+        Atom::Sqrt(p) | Atom::Root(p, _) | Atom::Abs(p) | Atom::Factor(p) => {
+            for b in p.atoms() {
+                quantities_of_atom(b, out);
+            }
+        }
+        Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) => quantities(u, out),
+        Atom::Pow(b, e) => {
+            quantities(b, out);
+            quantities(e, out);
+        }
     }
 }

@@ -220,7 +220,14 @@ impl Checker<'_, '_> {
             Some(crate::syntax::ast::By::Labels(ls)) => {
                 !ls.iter().any(|l| self.failed_labels.contains_key(&l.name))
             }
-            _ => self.failed_labels.is_empty(),
+            // Those that failed count only where their equations reach the link's
+            // quantities (a failed `~=` never does).
+            _ => {
+                let mut about = Vec::new();
+                super::claims::quantities(&red.a, &mut about);
+                super::claims::quantities(&red.b, &mut about);
+                self.failed_needed(&about).is_empty()
+            }
         };
         red.elim
             .as_ref()

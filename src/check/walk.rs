@@ -58,6 +58,11 @@ pub struct Checker<'l, 'o> {
     /// Labels of givens and claims that did not hold (or could not be read), with
     /// their line: a later `by [..]` citing one is not checked rather than an error.
     pub(super) failed_labels: HashMap<String, usize>,
+    /// For a failed claim whose equations are known, the quantities they would have
+    /// brought into the facts (`claims::quantities`); empty when it would bring none
+    /// (no `=` link, or a special case under `where`). A label not here may have
+    /// brought anything.
+    pub(super) failed_reach: HashMap<String, Vec<String>>,
     /// The first given set aside because it contradicted the facts before it, as
     /// messages name it (`[two] (line 7)`).
     pub(super) contradicted: Option<Text>,
@@ -106,6 +111,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             facts: Vec::new(),
             labels: HashMap::new(),
             failed_labels: HashMap::new(),
+            failed_reach: HashMap::new(),
             contradicted: None,
             failed_names: HashMap::new(),
             noted_uses: HashSet::new(),
