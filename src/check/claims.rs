@@ -165,8 +165,9 @@ impl Checker<'_, '_> {
                 quantities(&prev, r);
                 quantities(&rhs, r);
             }
-            // With `where`, a claim is a special case and adds nothing general.
-            if status.is_verified() && link.op == RelOp::Eq && subs.is_empty() {
+            // With `where`, a claim is a special case and adds nothing general (its
+            // equations are kept apart, for claims with the same `where`).
+            if status.is_verified() && link.op == RelOp::Eq {
                 if let Ok(v) = prev.sub(&rhs) {
                     new_facts.push((v, self.fact_conditions(all_divs)));
                 }
@@ -182,7 +183,12 @@ impl Checker<'_, '_> {
             prev = rhs;
             prev_divs = divs;
         }
-        self.add_claim_facts(&label, span, (new_facts, reach), claim.verified());
+        let verified = claim.verified();
+        if subs.is_empty() {
+            self.add_claim_facts(&label, span, (new_facts, reach), verified);
+        } else {
+            self.add_special_case(&label, span, (new_facts, subs), verified);
+        }
         self.report.claims.push(claim);
     }
 
@@ -415,6 +421,38 @@ impl Checker<'_, '_> {
         }
     }
 
+    /// A claim with `where` (`subs`): its verified equations are a special case, kept
+    /// apart from the facts (and never exported); a claim with the same `where` may
+    /// cite them. It adds nothing to the facts when it fails either.
+    fn add_special_case(
+        &mut self,
+        label: &Option<String>,
+        span: Span,
+        (new_facts, subs): (Vec<NewFact>, Vec<(AtomId, Rat)>),
+        verified: bool,
+    ) {
+        let name = self.fact_name(label, span);
+        let Some(l) = label else { return };
+        if !verified {
+            let line = self.line(span);
+            self.failed_labels.insert(l.clone(), line);
+            self.failed_reach.insert(l.clone(), Vec::new());
+            return;
+        }
+        for (value, divisors) in new_facts {
+            let fact = Fact {
+                value,
+                name: name.clone(),
+            };
+            let known = Known {
+                label: Some(l.clone()),
+                fact,
+                divisors,
+            };
+            self.special.push((subs.clone(), known));
+        }
+    }
+
     /// The `where` substitutions of a claim; `None` after reporting a bad one.
     fn where_subs(&mut self, where_: &[Assign]) -> Option<Vec<(AtomId, Rat)>> {
         let mut subs: Vec<(AtomId, Rat)> = Vec::new();
@@ -582,19 +620,25 @@ impl Checker<'_, '_> {
     }
 
     /// The facts a link may use: all in scope, or those `by [..]` names (`Err` when a
-    /// label names none; nothing is reported).
-    pub(super) fn facts_in(&self, by: Option<&By>) -> Result<Vec<Known>, ()> {
+    /// label names none; nothing is reported). Under `where` (`subs`), a label may also
+    /// name a special case with the same substitutions.
+    pub(super) fn facts_in(
+        &self,
+        by: Option<&By>,
+        subs: &[(AtomId, Rat)],
+    ) -> Result<Vec<Known>, ()> {
         let Some(By::Labels(ls)) = by else {
             return Ok(self.facts.clone());
         };
         let mut out = Vec::new();
         for l in ls {
-            let found = self
-                .facts
-                .iter()
-                .filter(|k| k.label.as_deref() == Some(l.name.as_str()));
+            let named = |k: &&Known| k.label.as_deref() == Some(l.name.as_str());
             let before = out.len();
-            out.extend(found.cloned());
+            out.extend(self.facts.iter().filter(named).cloned());
+            if !subs.is_empty() {
+                let special = self.special.iter().filter(|(s, _)| same_subs(s, subs));
+                out.extend(special.map(|(_, k)| k).filter(named).cloned());
+            }
             if out.len() == before {
                 return Err(());
             }
@@ -602,13 +646,42 @@ impl Checker<'_, '_> {
         Ok(out)
     }
 
+    /// Why `label` names no fact a link under `where` (`subs`) may cite, when it names
+    /// a special case (a claim with a different `where`).
+    fn special_case_why(&self, label: &str, subs: &[(AtomId, Rat)]) -> Option<String> {
+        let (theirs, _) = self
+            .special
+            .iter()
+            .find(|(_, k)| k.label.as_deref() == Some(label))?;
+        let show = |s: &[(AtomId, Rat)]| {
+            s.iter()
+                .map(|(a, v)| format!("{} = {}", atom::sym_name(*a).unwrap_or_default(), plain(v)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let mine = if subs.is_empty() {
+            "this step has none".to_string()
+        } else {
+            format!("this step's is `where {}`", show(subs))
+        };
+        Some(format!(
+            "it holds only `where {}`, and {mine}: cite it from a claim with the same `where`, or claim the general result and cite that",
+            show(theirs)
+        ))
+    }
+
     /// Like [`Checker::facts_in`], reporting every label that names no fact.
     ///
     /// `Err(true)` when every such label names a given or claim that did not hold:
     /// the link is not checked, and a note (not an error) says what it depends on —
     /// one mistake is reported once, where it was made.
-    pub(super) fn facts_for(&mut self, by: Option<&By>, span: Span) -> Result<Vec<Known>, bool> {
-        if let Ok(v) = self.facts_in(by) {
+    pub(super) fn facts_for(
+        &mut self,
+        by: Option<&By>,
+        subs: &[(AtomId, Rat)],
+        span: Span,
+    ) -> Result<Vec<Known>, bool> {
+        if let Ok(v) = self.facts_in(by, subs) {
             return Ok(v);
         }
         let Some(By::Labels(ls)) = by else {
@@ -617,10 +690,8 @@ impl Checker<'_, '_> {
         let missing: Vec<&crate::syntax::ast::Label> = ls
             .iter()
             .filter(|l| {
-                !self
-                    .facts
-                    .iter()
-                    .any(|k| k.label.as_deref() == Some(l.name.as_str()))
+                self.facts_in(Some(&By::Labels(vec![(*l).clone()])), subs)
+                    .is_err()
             })
             .collect();
         if missing
@@ -641,6 +712,14 @@ impl Checker<'_, '_> {
         }
         for l in missing {
             if self.failed_labels.contains_key(&l.name) {
+                continue;
+            }
+            if let Some(why) = self.special_case_why(&l.name, subs) {
+                let msg = format!(
+                    "[{}] is a special case, which this step cannot cite",
+                    l.name
+                );
+                self.error(Code::UnknownLabel, msg, l.span, &why);
                 continue;
             }
             let known: Vec<String> = self.labels.keys().cloned().collect();
@@ -747,4 +826,9 @@ fn quantities_of_atom(a: AtomId, out: &mut Vec<String>) {
             quantities(e, out);
         }
     }
+}
+
+/// Whether two `where` substitutions set the same symbols to the same values.
+fn same_subs(a: &[(AtomId, Rat)], b: &[(AtomId, Rat)]) -> bool {
+    a.len() == b.len() && a.iter().all(|x| b.contains(x))
 }

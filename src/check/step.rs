@@ -145,7 +145,7 @@ impl Checker<'_, '_> {
         };
         // `by [..]` must name facts before this line, even where none is needed.
         if input.restricted() {
-            match self.facts_for(input.by(), span) {
+            match self.facts_for(input.by(), input.subs, span) {
                 Ok(_) => {}
                 Err(true) => return Ok(Status::NotChecked),
                 Err(false) => return Ok(Status::Error),
@@ -204,7 +204,7 @@ impl Checker<'_, '_> {
         diff: Rat,
     ) -> Result<Option<Reduced>, Diagnostic> {
         let span = input.span;
-        let Ok(allowed) = self.facts_in(input.by()) else {
+        let Ok(allowed) = self.facts_in(input.by(), input.subs) else {
             return Ok(None);
         };
         let after_where = |ks: &[Known]| -> Vec<Fact> {

@@ -63,6 +63,9 @@ pub struct Checker<'l, 'o> {
     /// (no `=` link, or a special case under `where`). A label not here may have
     /// brought anything.
     pub(super) failed_reach: HashMap<String, Vec<String>>,
+    /// The equations of verified claims with `where`, with their substitutions: a
+    /// special case, cited (`by [..]`) only by a claim with the same `where`.
+    pub(super) special: Vec<(Vec<(AtomId, Rat)>, Known)>,
     /// The first given set aside because it contradicted the facts before it, as
     /// messages name it (`[two] (line 7)`).
     pub(super) contradicted: Option<Text>,
@@ -112,6 +115,7 @@ impl<'l, 'o> Checker<'l, 'o> {
             labels: HashMap::new(),
             failed_labels: HashMap::new(),
             failed_reach: HashMap::new(),
+            special: Vec::new(),
             contradicted: None,
             failed_names: HashMap::new(),
             noted_uses: HashSet::new(),
