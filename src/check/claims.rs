@@ -101,21 +101,8 @@ impl Checker<'_, '_> {
             };
             let mut divs = Vec::new();
             let Some(rhs) = self.lower(&link.rhs, &mut divs) else {
-                let status = if self.timed_out {
-                    Status::Undecided
-                } else {
-                    Status::Error
-                };
                 reach = None;
-                claim.links.push(LinkReport {
-                    span,
-                    op: link.op,
-                    lhs: None,
-                    rhs: None,
-                    status,
-                    units: None,
-                    mistake: None,
-                });
+                claim.links.push(self.unread_link(span, link.op));
                 break;
             };
             let mut all_divs = prev_divs.clone();
@@ -184,12 +171,31 @@ impl Checker<'_, '_> {
             prev_divs = divs;
         }
         let verified = claim.verified();
+        self.report.claims.push(claim);
         if subs.is_empty() {
             self.add_claim_facts(&label, span, (new_facts, reach), verified);
         } else {
             self.add_special_case(&label, span, (new_facts, subs), verified);
         }
-        self.report.claims.push(claim);
+    }
+
+    /// The report of a link whose right side could not be read (its error is
+    /// reported): an error, or undecided when the time ran out.
+    fn unread_link(&self, span: Span, op: RelOp) -> LinkReport {
+        let status = if self.timed_out {
+            Status::Undecided
+        } else {
+            Status::Error
+        };
+        LinkReport {
+            span,
+            op,
+            lhs: None,
+            rhs: None,
+            status,
+            units: None,
+            mistake: None,
+        }
     }
 
     /// The report of a checked link (its units left out); what it got wrong comes from
