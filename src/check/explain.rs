@@ -270,6 +270,34 @@ impl Checker<'_, '_> {
         Some((a, b, steps))
     }
 
+    /// What a refuted link got wrong. A whole side off by a constant factor (or a
+    /// sign) says it best when the sides are compared as written; once facts were
+    /// used (`steps`), the factor is between sides the writer never saw, so one term
+    /// that explains the difference as written comes first, and a whole-side factor
+    /// says that it holds after the facts.
+    fn refuted_why(
+        &self,
+        input: &LinkInput<'_>,
+        target: &Rat,
+        steps: &[super::elimination::Step],
+        diagnosis: Option<crate::decide::Diagnosis>,
+    ) -> Option<crate::decide::Diagnosis> {
+        let whole = diagnosis.as_ref().is_some_and(|d| d.whole);
+        if whole && steps.is_empty() {
+            return diagnosis;
+        }
+        let term = self.term_diagnosis(input, target, steps);
+        term.or_else(|| {
+            diagnosis.map(|d| match d.whole && !steps.is_empty() {
+                true => crate::decide::Diagnosis {
+                    text: format!("once the facts are used, {}", d.text),
+                    ..d
+                },
+                false => d,
+            })
+        })
+    }
+
     /// The diagnostic of an `=` link that does not verify. `sides`: the sides reduced
     /// by every fact in scope, when a refutation may be tried on them.
     pub(super) fn not_equal(
@@ -357,12 +385,7 @@ impl Checker<'_, '_> {
                     }
                 }
                 let target = ra.sub(&rb).unwrap_or_else(|_| Rat::zero());
-                // A whole side off by a constant factor (or a sign) says it best.
-                let whole = diagnosis.as_ref().is_some_and(|d| d.whole);
-                let why = (!whole)
-                    .then(|| self.term_diagnosis(input, &target, &steps))
-                    .flatten()
-                    .or(diagnosis);
+                let why = self.refuted_why(input, &target, &steps, diagnosis);
                 let d = Diagnostic::error(
                     Code::Refuted,
                     using("this step does not hold", ""),

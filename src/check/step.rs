@@ -151,6 +151,9 @@ impl Checker<'_, '_> {
                 Err(false) => return Ok(Status::Error),
             }
         }
+        if let Some(of) = input.link.compare.as_ref() {
+            return self.compare_coefficients(input, of, (&a, &b));
+        }
         if diff.is_zero() && input.divisors.is_empty() && input.link.op == RelOp::Eq {
             // An identity with nothing to assume: no facts needed.
             let status = Status::Verified {

@@ -534,7 +534,13 @@ impl<'l, 'o> Checker<'l, 'o> {
             return true;
         }
         let values: Vec<Fact> = self.facts.iter().map(|k| k.fact.clone()).collect();
-        let Some(why) = super::elimination::contradiction(&values, &self.env.signs) else {
+        let why = match super::elimination::contradiction(&values, &self.env.signs) {
+            Some(why) => Some((why, "no real values satisfy the facts with this one")),
+            None => self
+                .motion_forced_still(&values)
+                .map(|w| (Text::from(w), "with this one, nothing moves")),
+        };
+        let Some((why, label)) = why else {
             return true;
         };
         let line = self.line(span);
@@ -549,7 +555,7 @@ impl<'l, 'o> Checker<'l, 'o> {
                 Code::FalseFacts,
                 Text::from("the facts contradict each other: ").then(&why),
                 span,
-                "no real values satisfy the facts with this one",
+                label,
             )
             .note("nothing can be verified from contradictory facts; this fact is not used (check the givens and the declared signs)"),
         );

@@ -356,6 +356,15 @@ fn a_failed_link_carries_its_kind_of_mistake() {
             Mistake::Sign,
             "sign",
         ),
+        // After the facts, every term is a multiple of g m sin(beta): a factor between
+        // the sides as reduced is not what was written; the term with its sign is.
+        (
+            "symbols m g > 0\nsymbols beta\ntime x\nunknowns F\n\
+             given [Fx] m g sin(beta) - F = m x''\ngiven [F] F = 2/5 m x''\n\
+             claim m g sin(beta) = m x'' - 2/5 m x'' by [Fx], [F]\n",
+            Mistake::Sign,
+            "sign",
+        ),
         (
             "symbols m L > 0\nclaim m L^2/6 = m L^2/12\n",
             Mistake::Factor,
