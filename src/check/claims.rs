@@ -93,25 +93,22 @@ impl Checker<'_, '_> {
         let mut reach = Some(Vec::new());
         // The last link, if it failed: its index, left side, diagnostic and span.
         let mut odd: Option<(usize, Rat, usize, Span)> = None;
+        // The member before a run of `~=` links, with its conditions and index: each
+        // link of the run compares it with its own right side, at its own precision.
+        let mut approx_from: Option<(Rat, Vec<Condition>, usize)> = None;
         for (i, link) in chain.links.iter().enumerate() {
-            let span = if i == 0 {
-                chain.first.span.to(link.span)
-            } else {
-                link.span
-            };
+            let from = approx_from.as_ref().filter(|_| link.op == RelOp::Approx);
+            let (lhs, lhs_divs, k) = from.map_or((&prev, &prev_divs, i), |(v, d, k)| (v, d, *k));
+            let span = link_span(chain, i);
             let mut divs = Vec::new();
             let Some(rhs) = self.lower(&link.rhs, &mut divs) else {
                 reach = None;
                 claim.links.push(self.unread_link(span, link.op));
                 break;
             };
-            let mut all_divs = prev_divs.clone();
+            let mut all_divs = lhs_divs.clone();
             all_divs.extend(divs.iter().cloned());
-            let lhs_expr = if i == 0 {
-                &chain.first
-            } else {
-                chain.links.get(i - 1).map_or(&chain.first, |l| &l.rhs)
-            };
+            let lhs_expr = member(chain, k);
             // A fault for the guard's own tests: every right side "normalises" to the left.
             let rhs = if self.loader.opts.corrupt_for_tests {
                 prev.clone()
@@ -119,7 +116,7 @@ impl Checker<'_, '_> {
                 rhs
             };
             let input = LinkInput {
-                lhs: &prev,
+                lhs,
                 rhs: &rhs,
                 lhs_expr,
                 where_,
@@ -140,11 +137,14 @@ impl Checker<'_, '_> {
             }
             .unwrap_or_else(|d| {
                 let mut about = Vec::new();
-                quantities(&prev, &mut about);
+                quantities(lhs, &mut about);
                 quantities(&rhs, &mut about);
                 self.failed_link(d, link.by.as_ref().map(|b| &b.0), span, &about)
             });
-            let status = self.odd_link(&mut odd, (i, link, &prev, &rhs), before, status);
+            if k != i {
+                self.note_approx_run(before, lhs_expr);
+            }
+            let status = self.odd_link(&mut odd, (i, link, lhs, &rhs), before, status);
             if let Some(r) = reach
                 .as_mut()
                 .filter(|_| link.op == RelOp::Eq && subs.is_empty())
@@ -167,6 +167,11 @@ impl Checker<'_, '_> {
             });
             let report = self.link_report((span, link.op), (&prev, &rhs), status, before);
             claim.links.push(LinkReport { units, ..report });
+            if link.op != RelOp::Approx {
+                approx_from = None;
+            } else if approx_from.is_none() {
+                approx_from = Some((prev.clone(), prev_divs.clone(), i));
+            }
             prev = rhs;
             prev_divs = divs;
         }
@@ -176,6 +181,28 @@ impl Checker<'_, '_> {
             self.add_claim_facts(&label, span, (new_facts, reach), verified);
         } else {
             self.add_special_case(&label, span, (new_facts, subs), verified);
+        }
+    }
+
+    /// The note on a failed link of a run of `~=` (its diagnostics from `before` on):
+    /// its right side was compared with `from`, the member before the run.
+    fn note_approx_run(&mut self, before: usize, from: &Expr) {
+        let written = self
+            .report
+            .source
+            .get(from.span.start..from.span.end)
+            .unwrap_or("?")
+            .to_string();
+        if let Some(d) = self
+            .report
+            .diagnostics
+            .get_mut(before..)
+            .and_then(|ds| ds.first_mut())
+        {
+            d.notes.push(
+                format!("in a run of `~=`, each right side is compared with `{written}`, the member before the run, at the precision it is written to")
+                    .into(),
+            );
         }
     }
 
@@ -837,4 +864,21 @@ fn quantities_of_atom(a: AtomId, out: &mut Vec<String>) {
 /// Whether two `where` substitutions set the same symbols to the same values.
 fn same_subs(a: &[(AtomId, Rat)], b: &[(AtomId, Rat)]) -> bool {
     a.len() == b.len() && a.iter().all(|x| b.contains(x))
+}
+
+/// Member `k` of a chain: its first expression, or the right side of link `k − 1`.
+fn member(chain: &Chain, k: usize) -> &Expr {
+    match k.checked_sub(1).and_then(|j| chain.links.get(j)) {
+        Some(l) => &l.rhs,
+        None => &chain.first,
+    }
+}
+
+/// The span of link `i`: the first one from the chain's first expression.
+fn link_span(chain: &Chain, i: usize) -> Span {
+    match chain.links.get(i) {
+        Some(l) if i == 0 => chain.first.span.to(l.span),
+        Some(l) => l.span,
+        None => chain.first.span,
+    }
 }
