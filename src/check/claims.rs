@@ -165,7 +165,7 @@ impl Checker<'_, '_> {
                 }
                 _ => None,
             });
-            let report = self.link_report((span, link.op), (&prev, &rhs), status, before);
+            let report = self.link_report((span, link.op), (lhs, &rhs), status, before);
             claim.links.push(LinkReport { units, ..report });
             if link.op != RelOp::Approx {
                 approx_from = None;
