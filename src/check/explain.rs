@@ -108,6 +108,23 @@ impl Checker<'_, '_> {
         let Some((target, _, left)) = elim(&red.scope, true) else {
             return Ok(None);
         };
+        // Moments of an abstract body are solved for whenever that shows a step (they
+        // cannot be declared): it did not show this one.
+        let moment = |a: &AtomId| matches!(&*atom::get(*a), crate::normal::Atom::Moment(..));
+        if tied.iter().all(moment) {
+            return Err(not_verified(
+                tied_headline(&tied, &left),
+                vec![
+                    Note::Remainder {
+                        eliminated: false,
+                        value: short(&plain(&target)),
+                    },
+                    Note::from(
+                        "solving the facts for the body's moments does not give this step either",
+                    ),
+                ],
+            ));
+        }
         Err(not_verified(
             tied_headline(&tied, &left),
             vec![
