@@ -290,8 +290,8 @@ impl Checker<'_, '_> {
     /// What a refuted link got wrong. A whole side off by a constant factor (or a
     /// sign) says it best when the sides are compared as written; once facts were
     /// used (`steps`), the factor is between sides the writer never saw, so one term
-    /// that explains the difference as written comes first, and a whole-side factor
-    /// says that it holds after the facts.
+    /// that explains the difference as written comes first (the headline and the notes
+    /// already say that the facts were used).
     fn refuted_why(
         &self,
         input: &LinkInput<'_>,
@@ -303,16 +303,7 @@ impl Checker<'_, '_> {
         if whole && steps.is_empty() {
             return diagnosis;
         }
-        let term = self.term_diagnosis(input, target, steps);
-        term.or_else(|| {
-            diagnosis.map(|d| match d.whole && !steps.is_empty() {
-                true => crate::decide::Diagnosis {
-                    text: format!("once the facts are used, {}", d.text),
-                    ..d
-                },
-                false => d,
-            })
-        })
+        self.term_diagnosis(input, target, steps).or(diagnosis)
     }
 
     /// The diagnostic of an `=` link that does not verify. `sides`: the sides reduced
