@@ -16,6 +16,7 @@ use crate::normal::print::plain;
 use crate::normal::Rat;
 use crate::syntax::ast::{Assign, By, Chain, Expr, ExprKind, RelOp, Span};
 use crate::units::check::DimV;
+use std::collections::HashSet;
 
 /// An equation a verified link adds to the facts, with its conditions.
 type NewFact = (Rat, Vec<Condition>);
@@ -88,39 +89,26 @@ impl Checker<'_, '_> {
         };
         let (mut prev, mut prev_divs) = (first, divs);
         let mut new_facts: Vec<NewFact> = Vec::new();
+        // What the claim's equations would bring into the facts (none with `where`).
+        let mut reach = Some(Vec::new());
         // The last link, if it failed: its index, left side, diagnostic and span.
         let mut odd: Option<(usize, Rat, usize, Span)> = None;
+        // The member before a run of `~=` links, with its conditions and index: each
+        // link of the run compares it with its own right side, at its own precision.
+        let mut approx_from: Option<(Rat, Vec<Condition>, usize)> = None;
         for (i, link) in chain.links.iter().enumerate() {
-            let span = if i == 0 {
-                chain.first.span.to(link.span)
-            } else {
-                link.span
-            };
+            let from = approx_from.as_ref().filter(|_| link.op == RelOp::Approx);
+            let (lhs, lhs_divs, k) = from.map_or((&prev, &prev_divs, i), |(v, d, k)| (v, d, *k));
+            let span = link_span(chain, i);
             let mut divs = Vec::new();
             let Some(rhs) = self.lower(&link.rhs, &mut divs) else {
-                let status = if self.timed_out {
-                    Status::Undecided
-                } else {
-                    Status::Error
-                };
-                claim.links.push(LinkReport {
-                    span,
-                    op: link.op,
-                    lhs: None,
-                    rhs: None,
-                    status,
-                    units: None,
-                    mistake: None,
-                });
+                reach = None;
+                claim.links.push(self.unread_link(span, link.op));
                 break;
             };
-            let mut all_divs = prev_divs.clone();
+            let mut all_divs = lhs_divs.clone();
             all_divs.extend(divs.iter().cloned());
-            let lhs_expr = if i == 0 {
-                &chain.first
-            } else {
-                chain.links.get(i - 1).map_or(&chain.first, |l| &l.rhs)
-            };
+            let lhs_expr = member(chain, k);
             // A fault for the guard's own tests: every right side "normalises" to the left.
             let rhs = if self.loader.opts.corrupt_for_tests {
                 prev.clone()
@@ -128,7 +116,7 @@ impl Checker<'_, '_> {
                 rhs
             };
             let input = LinkInput {
-                lhs: &prev,
+                lhs,
                 rhs: &rhs,
                 lhs_expr,
                 where_,
@@ -147,49 +135,138 @@ impl Checker<'_, '_> {
                 Some(d) => Err(d),
                 None => self.check_link(&input),
             }
-            .unwrap_or_else(|d| self.failed_link(d, link.by.as_ref().map(|b| &b.0), span));
-            let status = self.odd_link(&mut odd, (i, link, &prev, &rhs), before, status);
-            // With `where`, a claim is a special case and adds nothing general.
-            if status.is_verified() && link.op == RelOp::Eq && subs.is_empty() {
+            .unwrap_or_else(|d| {
+                let mut about = Vec::new();
+                quantities(lhs, &mut about);
+                quantities(&rhs, &mut about);
+                self.failed_link(d, link.by.as_ref().map(|b| &b.0), span, &about)
+            });
+            if k != i {
+                self.note_approx_run(before, lhs_expr);
+            }
+            let status = self.odd_link(&mut odd, (i, link, lhs, &rhs), before, status);
+            if let Some(r) = reach
+                .as_mut()
+                .filter(|_| link.op == RelOp::Eq && subs.is_empty())
+            {
+                quantities(&prev, r);
+                quantities(&rhs, r);
+            }
+            // With `where`, a claim is a special case and adds nothing general (its
+            // equations are kept apart, for claims with the same `where`).
+            if status.is_verified() && link.op == RelOp::Eq {
                 if let Ok(v) = prev.sub(&rhs) {
                     new_facts.push((v, self.fact_conditions(all_divs)));
                 }
             }
-            let link_units = dims.as_ref().and_then(|d| match (d.get(i), d.get(i + 1)) {
+            let units = dims.as_ref().and_then(|d| match (d.get(i), d.get(i + 1)) {
                 (Some(Ok(DimV::D(a))), Some(Ok(b))) if DimV::D(a.clone()).agrees(b) => {
                     Some(a.si().to_string())
                 }
                 _ => None,
             });
-            // What the link got wrong, from the one error it reported.
-            let mistake = match status {
-                Status::Failed | Status::Undecided => self
-                    .report
-                    .diagnostics
-                    .get(before..)
-                    .and_then(|ds| ds.iter().find_map(|d| d.mistake.clone())),
-                _ => None,
-            };
-            claim.links.push(LinkReport {
-                span,
-                op: link.op,
-                lhs: Some(plain(&prev)),
-                rhs: Some(plain(&rhs)),
-                status,
-                units: link_units,
-                mistake,
-            });
+            let report = self.link_report((span, link.op), (lhs, &rhs), status, before);
+            claim.links.push(LinkReport { units, ..report });
+            if link.op != RelOp::Approx {
+                approx_from = None;
+            } else if approx_from.is_none() {
+                approx_from = Some((prev.clone(), prev_divs.clone(), i));
+            }
             prev = rhs;
             prev_divs = divs;
         }
-        self.add_claim_facts(&label, span, new_facts, claim.verified());
+        let verified = claim.verified();
         self.report.claims.push(claim);
+        if subs.is_empty() {
+            self.add_claim_facts(&label, span, (new_facts, reach), verified);
+        } else {
+            self.add_special_case(&label, span, (new_facts, subs), verified);
+        }
+    }
+
+    /// The note on a failed link of a run of `~=` (its diagnostics from `before` on):
+    /// its right side was compared with `from`, the member before the run.
+    fn note_approx_run(&mut self, before: usize, from: &Expr) {
+        let written = self
+            .report
+            .source
+            .get(from.span.start..from.span.end)
+            .unwrap_or("?")
+            .to_string();
+        if let Some(d) = self
+            .report
+            .diagnostics
+            .get_mut(before..)
+            .and_then(|ds| ds.first_mut())
+        {
+            d.notes.push(
+                format!("in a run of `~=`, each right side is compared with `{written}`, the member before the run, at the precision it is written to")
+                    .into(),
+            );
+        }
+    }
+
+    /// The report of a link whose right side could not be read (its error is
+    /// reported): an error, or undecided when the time ran out.
+    fn unread_link(&self, span: Span, op: RelOp) -> LinkReport {
+        let status = if self.timed_out {
+            Status::Undecided
+        } else {
+            Status::Error
+        };
+        LinkReport {
+            span,
+            op,
+            lhs: None,
+            rhs: None,
+            status,
+            units: None,
+            mistake: None,
+        }
+    }
+
+    /// The report of a checked link (its units left out); what it got wrong comes from
+    /// the one error it reported, among the diagnostics from `before` on.
+    fn link_report(
+        &self,
+        (span, op): (Span, RelOp),
+        (lhs, rhs): (&Rat, &Rat),
+        status: Status,
+        before: usize,
+    ) -> LinkReport {
+        let mistake = match status {
+            Status::Failed | Status::Undecided => self
+                .report
+                .diagnostics
+                .get(before..)
+                .and_then(|ds| ds.iter().find_map(|d| d.mistake.clone())),
+            _ => None,
+        };
+        LinkReport {
+            span,
+            op,
+            lhs: Some(plain(lhs)),
+            rhs: Some(plain(rhs)),
+            status,
+            units: None,
+            mistake,
+        }
     }
 
     /// A link that did not hold: its diagnostic, unless it cites (`by [..]`) a step
     /// that did not hold either — then the mistake was reported there, and this link
     /// is not checked (a note says what it depends on).
-    fn failed_link(&mut self, d: crate::diag::Diagnostic, by: Option<&By>, span: Span) -> Status {
+    ///
+    /// `about` holds the quantities of the link (`quantities`): a step undecided on all
+    /// the facts in scope is put down to a failed step only if that step's equations
+    /// could reach them through the facts.
+    fn failed_link(
+        &mut self,
+        d: crate::diag::Diagnostic,
+        by: Option<&By>,
+        span: Span,
+        about: &[String],
+    ) -> Status {
         // A given that contradicted the others was set aside: a step on all the facts
         // in scope that fails now may hold with it (from contradictory facts anything
         // follows), so the contradiction is the one mistake.
@@ -215,11 +292,9 @@ impl Checker<'_, '_> {
             // Undecided on all the facts in scope, some of which failed earlier: the
             // missing fact is most likely one of those.
             None if matches!(d.code, Code::NotVerified) => {
-                let first = self
-                    .failed_labels
-                    .iter()
-                    .min_by_key(|(l, line)| (**line, *l));
-                let others = self.failed_labels.len().saturating_sub(1);
+                let needed = self.failed_needed(about);
+                let first = needed.iter().min_by_key(|(l, line)| (*line, l.clone()));
+                let others = needed.len().saturating_sub(1);
                 first
                     .map(|(l, line)| match others {
                         0 => Text::label_at(l, *line),
@@ -352,7 +427,7 @@ impl Checker<'_, '_> {
         &mut self,
         label: &Option<String>,
         span: Span,
-        new_facts: Vec<NewFact>,
+        (new_facts, reach): (Vec<NewFact>, Option<Vec<String>>),
         verified: bool,
     ) {
         let name = self.fact_name(label, span);
@@ -372,7 +447,42 @@ impl Checker<'_, '_> {
             } else if !verified {
                 let line = self.line(span);
                 self.failed_labels.insert(l.clone(), line);
+                if let Some(r) = reach {
+                    self.failed_reach.insert(l.clone(), r);
+                }
             }
+        }
+    }
+
+    /// A claim with `where` (`subs`): its verified equations are a special case, kept
+    /// apart from the facts (and never exported); a claim with the same `where` may
+    /// cite them. It adds nothing to the facts when it fails either.
+    fn add_special_case(
+        &mut self,
+        label: &Option<String>,
+        span: Span,
+        (new_facts, subs): (Vec<NewFact>, Vec<(AtomId, Rat)>),
+        verified: bool,
+    ) {
+        let name = self.fact_name(label, span);
+        let Some(l) = label else { return };
+        if !verified {
+            let line = self.line(span);
+            self.failed_labels.insert(l.clone(), line);
+            self.failed_reach.insert(l.clone(), Vec::new());
+            return;
+        }
+        for (value, divisors) in new_facts {
+            let fact = Fact {
+                value,
+                name: name.clone(),
+            };
+            let known = Known {
+                label: Some(l.clone()),
+                fact,
+                divisors,
+            };
+            self.special.push((subs.clone(), known));
         }
     }
 
@@ -518,6 +628,10 @@ impl Checker<'_, '_> {
     fn push_undecided_links(&mut self, mut claim: ClaimReport, chain: &Chain, status: Status) {
         if let Some(l) = &claim.label {
             self.failed_labels.insert(l.clone(), claim.line);
+            // A chain with no `=` would have brought no fact.
+            if !chain.links.iter().any(|k| k.op == RelOp::Eq) {
+                self.failed_reach.insert(l.clone(), Vec::new());
+            }
         }
         for (i, link) in chain.links.iter().enumerate() {
             let span = if i == 0 {
@@ -539,19 +653,25 @@ impl Checker<'_, '_> {
     }
 
     /// The facts a link may use: all in scope, or those `by [..]` names (`Err` when a
-    /// label names none; nothing is reported).
-    pub(super) fn facts_in(&self, by: Option<&By>) -> Result<Vec<Known>, ()> {
+    /// label names none; nothing is reported). Under `where` (`subs`), a label may also
+    /// name a special case with the same substitutions.
+    pub(super) fn facts_in(
+        &self,
+        by: Option<&By>,
+        subs: &[(AtomId, Rat)],
+    ) -> Result<Vec<Known>, ()> {
         let Some(By::Labels(ls)) = by else {
             return Ok(self.facts.clone());
         };
         let mut out = Vec::new();
         for l in ls {
-            let found = self
-                .facts
-                .iter()
-                .filter(|k| k.label.as_deref() == Some(l.name.as_str()));
+            let named = |k: &&Known| k.label.as_deref() == Some(l.name.as_str());
             let before = out.len();
-            out.extend(found.cloned());
+            out.extend(self.facts.iter().filter(named).cloned());
+            if !subs.is_empty() {
+                let special = self.special.iter().filter(|(s, _)| same_subs(s, subs));
+                out.extend(special.map(|(_, k)| k).filter(named).cloned());
+            }
             if out.len() == before {
                 return Err(());
             }
@@ -559,13 +679,42 @@ impl Checker<'_, '_> {
         Ok(out)
     }
 
+    /// Why `label` names no fact a link under `where` (`subs`) may cite, when it names
+    /// a special case (a claim with a different `where`).
+    fn special_case_why(&self, label: &str, subs: &[(AtomId, Rat)]) -> Option<String> {
+        let (theirs, _) = self
+            .special
+            .iter()
+            .find(|(_, k)| k.label.as_deref() == Some(label))?;
+        let show = |s: &[(AtomId, Rat)]| {
+            s.iter()
+                .map(|(a, v)| format!("{} = {}", atom::sym_name(*a).unwrap_or_default(), plain(v)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let mine = if subs.is_empty() {
+            "this step has none".to_string()
+        } else {
+            format!("this step's is `where {}`", show(subs))
+        };
+        Some(format!(
+            "it holds only `where {}`, and {mine}: cite it from a claim with the same `where`, or claim the general result and cite that",
+            show(theirs)
+        ))
+    }
+
     /// Like [`Checker::facts_in`], reporting every label that names no fact.
     ///
     /// `Err(true)` when every such label names a given or claim that did not hold:
     /// the link is not checked, and a note (not an error) says what it depends on —
     /// one mistake is reported once, where it was made.
-    pub(super) fn facts_for(&mut self, by: Option<&By>, span: Span) -> Result<Vec<Known>, bool> {
-        if let Ok(v) = self.facts_in(by) {
+    pub(super) fn facts_for(
+        &mut self,
+        by: Option<&By>,
+        subs: &[(AtomId, Rat)],
+        span: Span,
+    ) -> Result<Vec<Known>, bool> {
+        if let Ok(v) = self.facts_in(by, subs) {
             return Ok(v);
         }
         let Some(By::Labels(ls)) = by else {
@@ -574,10 +723,8 @@ impl Checker<'_, '_> {
         let missing: Vec<&crate::syntax::ast::Label> = ls
             .iter()
             .filter(|l| {
-                !self
-                    .facts
-                    .iter()
-                    .any(|k| k.label.as_deref() == Some(l.name.as_str()))
+                self.facts_in(Some(&By::Labels(vec![(*l).clone()])), subs)
+                    .is_err()
             })
             .collect();
         if missing
@@ -598,6 +745,14 @@ impl Checker<'_, '_> {
         }
         for l in missing {
             if self.failed_labels.contains_key(&l.name) {
+                continue;
+            }
+            if let Some(why) = self.special_case_why(&l.name, subs) {
+                let msg = format!(
+                    "[{}] is a special case, which this step cannot cite",
+                    l.name
+                );
+                self.error(Code::UnknownLabel, msg, l.span, &why);
                 continue;
             }
             let known: Vec<String> = self.labels.keys().cloned().collect();
@@ -624,5 +779,106 @@ impl Checker<'_, '_> {
             );
         }
         Err(false)
+    }
+}
+
+impl Checker<'_, '_> {
+    /// The failed labels (with their lines) whose equations could have reached the
+    /// quantities `about` through the facts in scope: those that would have brought
+    /// no fact (a failed `~=`, a special case under `where`) or only facts about
+    /// quantities no chain of facts ties to `about` are left out.
+    pub(super) fn failed_needed(&self, about: &[String]) -> Vec<(String, usize)> {
+        let mut tied: HashSet<&str> = about.iter().map(String::as_str).collect();
+        let mut groups: Vec<Vec<String>> = self
+            .facts
+            .iter()
+            .map(|k| {
+                let mut q = Vec::new();
+                quantities(&k.fact.value, &mut q);
+                q
+            })
+            .collect();
+        groups.extend(self.failed_reach.values().cloned());
+        // Everything a chain of facts (or of failed equations) ties to `about`.
+        let mut grown = true;
+        while grown {
+            grown = false;
+            for g in &groups {
+                if g.iter().any(|q| tied.contains(q.as_str()))
+                    && g.iter().any(|q| !tied.contains(q.as_str()))
+                {
+                    tied.extend(g.iter().map(String::as_str));
+                    grown = true;
+                }
+            }
+        }
+        self.failed_labels
+            .iter()
+            .filter(|(l, _)| {
+                self.failed_reach
+                    .get(*l)
+                    .is_none_or(|r| r.iter().any(|q| tied.contains(q.as_str())))
+            })
+            .map(|(l, line)| (l.clone(), *line))
+            .collect()
+    }
+}
+
+/// The quantities `r` is about, by name, added to `out`: symbols with their primes
+/// dropped (`x''` is about `x`), a symbol at an instant by its symbol, and the moments
+/// of an abstract body by the body.
+pub(super) fn quantities(r: &Rat, out: &mut Vec<String>) {
+    for a in r.atoms() {
+        quantities_of_atom(a, out);
+    }
+}
+
+fn quantities_of_atom(a: AtomId, out: &mut Vec<String>) {
+    use crate::normal::atom::Atom;
+    let mut push = |q: String| {
+        if !out.contains(&q) {
+            out.push(q);
+        }
+    };
+    match &*atom::get(a) {
+        Atom::Sym(s) => push(s.trim_end_matches('\'').to_string()),
+        Atom::At(s, u) => {
+            push(s.trim_end_matches('\'').to_string());
+            quantities(u, out);
+        }
+        Atom::Moment(body, _) => push(format!("\u{1}body {body}")),
+        Atom::Pi => {}
+        Atom::Sqrt(p) | Atom::Root(p, _) | Atom::Abs(p) | Atom::Factor(p) => {
+            for b in p.atoms() {
+                quantities_of_atom(b, out);
+            }
+        }
+        Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) => quantities(u, out),
+        Atom::Pow(b, e) => {
+            quantities(b, out);
+            quantities(e, out);
+        }
+    }
+}
+
+/// Whether two `where` substitutions set the same symbols to the same values.
+fn same_subs(a: &[(AtomId, Rat)], b: &[(AtomId, Rat)]) -> bool {
+    a.len() == b.len() && a.iter().all(|x| b.contains(x))
+}
+
+/// Member `k` of a chain: its first expression, or the right side of link `k − 1`.
+fn member(chain: &Chain, k: usize) -> &Expr {
+    match k.checked_sub(1).and_then(|j| chain.links.get(j)) {
+        Some(l) => &l.rhs,
+        None => &chain.first,
+    }
+}
+
+/// The span of link `i`: the first one from the chain's first expression.
+fn link_span(chain: &Chain, i: usize) -> Span {
+    match chain.links.get(i) {
+        Some(l) if i == 0 => chain.first.span.to(l.span),
+        Some(l) => l.span,
+        None => chain.first.span,
     }
 }

@@ -108,6 +108,23 @@ impl Checker<'_, '_> {
         let Some((target, _, left)) = elim(&red.scope, true) else {
             return Ok(None);
         };
+        // Moments of an abstract body are solved for whenever that shows a step (they
+        // cannot be declared): it did not show this one.
+        let moment = |a: &AtomId| matches!(&*atom::get(*a), crate::normal::Atom::Moment(..));
+        if tied.iter().all(moment) {
+            return Err(not_verified(
+                tied_headline(&tied, &left),
+                vec![
+                    Note::Remainder {
+                        eliminated: false,
+                        value: short(&plain(&target)),
+                    },
+                    Note::from(
+                        "solving the facts for the body's moments does not give this step either",
+                    ),
+                ],
+            ));
+        }
         Err(not_verified(
             tied_headline(&tied, &left),
             vec![
@@ -220,7 +237,14 @@ impl Checker<'_, '_> {
             Some(crate::syntax::ast::By::Labels(ls)) => {
                 !ls.iter().any(|l| self.failed_labels.contains_key(&l.name))
             }
-            _ => self.failed_labels.is_empty(),
+            // Those that failed count only where their equations reach the link's
+            // quantities (a failed `~=` never does).
+            _ => {
+                let mut about = Vec::new();
+                super::claims::quantities(&red.a, &mut about);
+                super::claims::quantities(&red.b, &mut about);
+                self.failed_needed(&about).is_empty()
+            }
         };
         red.elim
             .as_ref()
@@ -261,6 +285,25 @@ impl Checker<'_, '_> {
         let a = apply_steps(&red.a, &steps, signs).ok()?;
         let b = apply_steps(&red.b, &steps, signs).ok()?;
         Some((a, b, steps))
+    }
+
+    /// What a refuted link got wrong. A whole side off by a constant factor (or a
+    /// sign) says it best when the sides are compared as written; once facts were
+    /// used (`steps`), the factor is between sides the writer never saw, so one term
+    /// that explains the difference as written comes first (the headline and the notes
+    /// already say that the facts were used).
+    fn refuted_why(
+        &self,
+        input: &LinkInput<'_>,
+        target: &Rat,
+        steps: &[super::elimination::Step],
+        diagnosis: Option<crate::decide::Diagnosis>,
+    ) -> Option<crate::decide::Diagnosis> {
+        let whole = diagnosis.as_ref().is_some_and(|d| d.whole);
+        if whole && steps.is_empty() {
+            return diagnosis;
+        }
+        self.term_diagnosis(input, target, steps).or(diagnosis)
     }
 
     /// The diagnostic of an `=` link that does not verify. `sides`: the sides reduced
@@ -350,12 +393,7 @@ impl Checker<'_, '_> {
                     }
                 }
                 let target = ra.sub(&rb).unwrap_or_else(|_| Rat::zero());
-                // A whole side off by a constant factor (or a sign) says it best.
-                let whole = diagnosis.as_ref().is_some_and(|d| d.whole);
-                let why = (!whole)
-                    .then(|| self.term_diagnosis(input, &target, &steps))
-                    .flatten()
-                    .or(diagnosis);
+                let why = self.refuted_why(input, &target, &steps, diagnosis);
                 let d = Diagnostic::error(
                     Code::Refuted,
                     using("this step does not hold", ""),

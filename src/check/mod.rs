@@ -14,6 +14,7 @@
 //! | `explain.rs` | a link that fails: refutation (only where the facts allow), or why not |
 //! | `confirm.rs` | the guard: both sides as written, evaluated independently at points |
 //! | `dims.rs` | units: the `units` statement and the dimensions of every relation |
+//! | `coefficients.rs` | `by [..] comparing coefficients of theta`: linear equations in a motion |
 //! | `terms.rs` | the one term, as written, whose sign, factor or power explains a failure |
 //! | `relations.rs` | `!=`, `<`, `<=`, `>`, `>=` and `~=` links |
 //! | `signs.rs` | signs of differences and divisors, values against declared signs |
@@ -21,6 +22,7 @@
 //! | `scope.rs`, `report.rs` | declarations; the results as data |
 
 mod claims;
+mod coefficients;
 mod conditions;
 mod confirm;
 mod dims;

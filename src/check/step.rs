@@ -145,11 +145,14 @@ impl Checker<'_, '_> {
         };
         // `by [..]` must name facts before this line, even where none is needed.
         if input.restricted() {
-            match self.facts_for(input.by(), span) {
+            match self.facts_for(input.by(), input.subs, span) {
                 Ok(_) => {}
                 Err(true) => return Ok(Status::NotChecked),
                 Err(false) => return Ok(Status::Error),
             }
+        }
+        if let Some(of) = input.link.compare.as_ref() {
+            return self.compare_coefficients(input, of, (&a, &b));
         }
         if diff.is_zero() && input.divisors.is_empty() && input.link.op == RelOp::Eq {
             // An identity with nothing to assume: no facts needed.
@@ -204,7 +207,7 @@ impl Checker<'_, '_> {
         diff: Rat,
     ) -> Result<Option<Reduced>, Diagnostic> {
         let span = input.span;
-        let Ok(allowed) = self.facts_in(input.by()) else {
+        let Ok(allowed) = self.facts_in(input.by(), input.subs) else {
             return Ok(None);
         };
         let after_where = |ks: &[Known]| -> Vec<Fact> {
@@ -227,6 +230,7 @@ impl Checker<'_, '_> {
             None
         } else {
             let e = eliminate(&diff, &used, &is_unknown, signs, input.deadline);
+            let e = e.map(|e| moments_solved(e, &diff, &used, &is_unknown, signs, input.deadline));
             Some(e.map_err(|e| match e {
                 crate::normal::NormError::DivisionByZero => Diagnostic::error(
                     Code::DivisionByZero,
@@ -369,4 +373,38 @@ fn working(
         lhs: plain(&red.ra),
         rhs: plain(&red.rb),
     })
+}
+
+/// The elimination `e` of `diff`, or, when it leaves a nonzero target and moments of an
+/// abstract body are about, one that also solves for those moments, if that one shows
+/// the step (the moments are what the facts say they are: `int(x^2, B) = int(y^2, B)`
+/// and their sum give each). Only a verification is taken from it; a failure keeps
+/// the first elimination, with the moments free.
+fn moments_solved(
+    e: super::elimination::Elimination,
+    diff: &Rat,
+    facts: &[Fact],
+    is_unknown: &dyn Fn(AtomId) -> bool,
+    signs: &crate::normal::Assumptions,
+    deadline: Option<crate::clock::Deadline>,
+) -> super::elimination::Elimination {
+    let moment = |a: AtomId| {
+        matches!(
+            &*crate::normal::atom::get(a),
+            crate::normal::Atom::Moment(..)
+        )
+    };
+    if e.target.is_zero()
+        || e.timed_out
+        || !facts
+            .iter()
+            .any(|f| f.value.atoms().into_iter().any(moment))
+    {
+        return e;
+    }
+    let or_moment = |a: AtomId| is_unknown(a) || moment(a);
+    match eliminate(diff, facts, &or_moment, signs, deadline) {
+        Ok(m) if m.target.is_zero() && m.contradiction.is_none() => m,
+        _ => e,
+    }
 }

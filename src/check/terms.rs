@@ -71,6 +71,9 @@ impl Checker<'_, '_> {
         if ts.len() < 2 {
             return None;
         }
+        // A term with the wrong sign is the likeliest slip: it is named before a term
+        // off by a factor or a power, wherever it stands.
+        let mut other = None;
         for (t, s) in &ts {
             let Some(u) = self.term_value(input, t, steps) else {
                 continue;
@@ -88,11 +91,16 @@ impl Checker<'_, '_> {
                 // A missing or extra term is said by the whole-side diagnosis, which names
                 // it in normal form.
                 Some(Why::Extra) => {}
-                Some(Why::Other(mistake, text)) => return Some(Diagnosis::term(mistake, text)),
+                Some(Why::Other(Mistake::Sign, text)) => {
+                    return Some(Diagnosis::term(Mistake::Sign, text))
+                }
+                Some(Why::Other(mistake, text)) => {
+                    other = other.or(Some(Diagnosis::term(mistake, text)));
+                }
                 None => {}
             }
         }
-        None
+        other
     }
 
     /// A term's value, with the claim's `where` and the elimination's steps applied.

@@ -58,6 +58,14 @@ pub struct Checker<'l, 'o> {
     /// Labels of givens and claims that did not hold (or could not be read), with
     /// their line: a later `by [..]` citing one is not checked rather than an error.
     pub(super) failed_labels: HashMap<String, usize>,
+    /// For a failed claim whose equations are known, the quantities they would have
+    /// brought into the facts (`claims::quantities`); empty when it would bring none
+    /// (no `=` link, or a special case under `where`). A label not here may have
+    /// brought anything.
+    pub(super) failed_reach: HashMap<String, Vec<String>>,
+    /// The equations of verified claims with `where`, with their substitutions: a
+    /// special case, cited (`by [..]`) only by a claim with the same `where`.
+    pub(super) special: Vec<(Vec<(AtomId, Rat)>, Known)>,
     /// The first given set aside because it contradicted the facts before it, as
     /// messages name it (`[two] (line 7)`).
     pub(super) contradicted: Option<Text>,
@@ -106,6 +114,8 @@ impl<'l, 'o> Checker<'l, 'o> {
             facts: Vec::new(),
             labels: HashMap::new(),
             failed_labels: HashMap::new(),
+            failed_reach: HashMap::new(),
+            special: Vec::new(),
             contradicted: None,
             failed_names: HashMap::new(),
             noted_uses: HashSet::new(),
@@ -524,7 +534,13 @@ impl<'l, 'o> Checker<'l, 'o> {
             return true;
         }
         let values: Vec<Fact> = self.facts.iter().map(|k| k.fact.clone()).collect();
-        let Some(why) = super::elimination::contradiction(&values, &self.env.signs) else {
+        let why = match super::elimination::contradiction(&values, &self.env.signs) {
+            Some(why) => Some((why, "no real values satisfy the facts with this one")),
+            None => self
+                .motion_forced_still(&values)
+                .map(|w| (Text::from(w), "with this one, nothing moves")),
+        };
+        let Some((why, label)) = why else {
             return true;
         };
         let line = self.line(span);
@@ -539,7 +555,7 @@ impl<'l, 'o> Checker<'l, 'o> {
                 Code::FalseFacts,
                 Text::from("the facts contradict each other: ").then(&why),
                 span,
-                "no real values satisfy the facts with this one",
+                label,
             )
             .note("nothing can be verified from contradictory facts; this fact is not used (check the givens and the declared signs)"),
         );

@@ -243,6 +243,9 @@ pub struct Link {
     pub rhs: Expr,
     /// The justification, if any.
     pub by: Option<(By, Span)>,
+    /// `by [eom], [shm] comparing coefficients of theta`: the `time` symbol whose
+    /// coefficients the cited facts are compared in (`by` then holds the labels).
+    pub compare: Option<Name>,
     /// The span from the operator to the end of the link.
     pub span: Span,
 }

@@ -75,7 +75,7 @@ fn link<'a>(
     let start = cx.pos(at);
     match keyword(cx, rest, "by").filter(|_| rules.by) {
         Some((by_at, after_by)) => {
-            let (rest, (by, by_span)) = by_clause(cx, by_at, after_by, rules)?;
+            let (rest, (by, by_span, compare)) = by_clause(cx, by_at, after_by, rules)?;
             let span = Span::new(start, by_span.end);
             Ok((
                 rest,
@@ -83,6 +83,7 @@ fn link<'a>(
                     op,
                     rhs,
                     by: Some((by, by_span)),
+                    compare,
                     span,
                 },
             ))
@@ -95,6 +96,7 @@ fn link<'a>(
                     op,
                     rhs,
                     by: None,
+                    compare: None,
                     span,
                 },
             ))
@@ -103,14 +105,15 @@ fn link<'a>(
 }
 
 /// `justification`: the rest of the line after `by` (up to a comment), as labels
-/// `[a], [b] and [c]` when it is exactly that, else as text. In a claim, a whole word
+/// `[a], [b] and [c]` when it is exactly that (or labels followed by `comparing
+/// coefficients of NAME`, the name returned too), else as text. In a claim, a whole word
 /// `where` ends the text unless the next line starts another link or the `where` clause.
 pub(crate) fn by_clause<'a>(
     cx: &Cx<'a>,
     by_at: &'a str,
     after_by: &'a str,
     rules: ChainRules<'_>,
-) -> PResult<'a, (By, Span)> {
+) -> PResult<'a, (By, Span, Option<Name>)> {
     let text_at = hspace(after_by);
     let line_len = text_at
         .find(|c| c == '\n' || (cx.comments && c == '%'))
@@ -131,11 +134,31 @@ pub(crate) fn by_clause<'a>(
     }
     let rest = text_at.get(raw.len()..).unwrap_or("");
     let span = Span::new(cx.pos(by_at), cx.pos(rest));
-    let by = match label_list(cx, text_at) {
-        Ok((after, labels)) if cx.pos(after) == cx.pos(rest) => By::Labels(labels),
-        _ => By::Text(raw.to_string()),
+    let (by, compare) = match label_list(cx, text_at) {
+        Ok((after, labels)) if cx.pos(after) == cx.pos(rest) => (By::Labels(labels), None),
+        Ok((after, labels)) => match comparing(cx, after, rest) {
+            Some(name) => (By::Labels(labels), Some(name)),
+            None => (By::Text(raw.to_string()), None),
+        },
+        _ => (By::Text(raw.to_string()), None),
     };
-    Ok((rest, (by, span)))
+    Ok((rest, (by, span, compare)))
+}
+
+/// `by [a], [b] comparing coefficients of NAME`, after the labels (`after`): the
+/// name whose coefficients are compared, when the justification ends with it (at
+/// `end`, a suffix of the region).
+fn comparing<'a>(cx: &Cx<'a>, after: &'a str, end: &'a str) -> Option<Name> {
+    let mut rest = after;
+    for w in ["comparing", "coefficients", "of"] {
+        rest = keyword(cx, rest, w)?.1;
+    }
+    let name_at = hspace(rest);
+    let (after_name, id) = ident(name_at).ok()?;
+    (cx.pos(after_name) == cx.pos(end)).then(|| Name {
+        name: id.name,
+        span: cx.span(name_at, after_name),
+    })
 }
 
 /// The byte offset of the first whole-word occurrence of `word` in `text`.

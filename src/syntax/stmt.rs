@@ -455,10 +455,11 @@ fn fact<'a>(cx: &Cx<'a>, i: &'a str, kw: &'a str) -> PResult<'a, StmtKind> {
             // `$$ … $$ by [Fx]`: the justification of the last link.
             let i = match keyword(cx, i, "by") {
                 Some((by_at, after_by)) => {
-                    let (rest, (by, span)) = by_clause(cx, by_at, after_by, rules)?;
+                    let (rest, (by, span, compare)) = by_clause(cx, by_at, after_by, rules)?;
                     if let Some(last) = chain.links.last_mut() {
                         last.span = last.span.to(span);
                         last.by = Some((by, span));
+                        last.compare = compare;
                     }
                     rest
                 }
@@ -505,8 +506,9 @@ fn fact<'a>(cx: &Cx<'a>, i: &'a str, kw: &'a str) -> PResult<'a, StmtKind> {
                 by: true,
                 where_: false,
             };
-            let (rest, (by, by_span)) = by_clause(cx, by_at, after_by, rules)?;
+            let (rest, (by, by_span, compare)) = by_clause(cx, by_at, after_by, rules)?;
             last.by = Some((by, by_span));
+            last.compare = compare;
             rest
         }
         None => i,

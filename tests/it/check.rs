@@ -295,6 +295,49 @@ fn two_independent_mistakes_stay_two_errors_and_a_consequence_becomes_a_note() {
     assert!(!r.diagnostics.iter().any(|d| d.code.as_str() == "N0206"));
 }
 
+/// After a step that did not check, a later step undecided on all the facts in scope
+/// is "not checked" (N0205) only when the failed step could have given it a fact: an
+/// equation whose quantities a chain of facts ties to the later step's. A failed `~=`
+/// brings no fact, nor does a failed equation about other quantities; the later step
+/// then keeps its own "not verified" (E0302).
+#[test]
+fn only_a_step_that_could_have_given_a_fact_makes_a_later_one_not_checked() {
+    let codes = |text: &str| -> Vec<(String, usize)> {
+        let r = rigor::check_source(
+            "dep.deriv",
+            text,
+            &crate::no_budget(),
+            &rigor::check::MemoryResolver::new(),
+        );
+        r.diagnostics
+            .iter()
+            .filter_map(|d| {
+                let (span, _) = d.primary.as_ref()?;
+                let line = text[..span.start].matches('\n').count() + 1;
+                Some((d.code.as_str().to_string(), line))
+            })
+            .collect()
+    };
+    let owned = |v: &[(&str, usize)]| -> Vec<(String, usize)> {
+        v.iter().map(|(c, l)| (c.to_string(), *l)).collect()
+    };
+    // a^3 = b^3 ties a and b, but rigor cannot solve it: `a = b` is not verified.
+    let head = "symbols a b c h\nsymbols theta\nsmall theta\ngiven [cube] a^3 = b^3\n";
+    // An undecided `~=` (line 5) gives no fact: line 6 is undecided on its own.
+    let approx = format!("{head}claim [pole] cos(theta)/theta ~= 1\nclaim [same] a = b\n");
+    assert_eq!(codes(&approx), owned(&[("E0302", 5), ("E0302", 6)]));
+    // A false equation about h alone (nothing ties h to a or b) gives none either.
+    let other = format!("{head}claim [h] h = h + cos(h) - cos(h) + h^2\nclaim [same] a = b\n");
+    assert_eq!(codes(&other), owned(&[("E0301", 5), ("E0302", 6)]));
+    // A failed equation about a might have been the missing fact: not checked.
+    let tied = format!("{head}claim [ac] a = c + cos(c)\nclaim [same] a = b\n");
+    assert_eq!(codes(&tied), owned(&[("E0302", 5), ("N0205", 6)]));
+    // Nor through a fact that ties h to b.
+    let chain =
+        format!("{head}given [hb] h = b + c\nclaim [h] h = c + cos(c)\nclaim [same] a = b\n");
+    assert_eq!(codes(&chain), owned(&[("E0302", 6), ("N0205", 7)]));
+}
+
 /// The kind of mistake travels as data, from where the checker finds it: on the
 /// failing link, on its diagnostic, and into mark's gradebook kind. The words of the
 /// message play no part (a symbol named `power` or `missing` changes nothing).
@@ -310,6 +353,15 @@ fn a_failed_link_carries_its_kind_of_mistake() {
         ),
         (
             "symbols a power > 0\nclaim a + power = a - power\n",
+            Mistake::Sign,
+            "sign",
+        ),
+        // After the facts, every term is a multiple of g m sin(beta): a factor between
+        // the sides as reduced is not what was written; the term with its sign is.
+        (
+            "symbols m g > 0\nsymbols beta\ntime x\nunknowns F\n\
+             given [Fx] m g sin(beta) - F = m x''\ngiven [F] F = 2/5 m x''\n\
+             claim m g sin(beta) = m x'' - 2/5 m x'' by [Fx], [F]\n",
             Mistake::Sign,
             "sign",
         ),

@@ -54,6 +54,7 @@ pub fn parse_latex_chain(
             span: Span::new(at.start, rhs.span.end),
             rhs,
             by: None,
+            compare: None,
         });
     }
     p.trailer()?;
@@ -78,6 +79,7 @@ pub fn parse_latex_links(
             span: Span::new(at.start, rhs.span.end),
             rhs,
             by: None,
+            compare: None,
         });
     }
     p.trailer()?;

@@ -642,3 +642,46 @@ fn deep_nesting_in_a_file() {
         assert_eq!(e.kind, SyntaxErrorKind::Other, "{src}: {}", e.message);
     }
 }
+
+#[test]
+fn comparing_coefficients_is_labels_and_a_name() {
+    let link = |src: &str| {
+        let file = parse_file(src, &ParseOptions::default()).expect("parses");
+        let Some(Item::Stmt(claim)) = file.items.first() else {
+            panic!("{file:?}")
+        };
+        let StmtKind::Claim { chain, .. } = &claim.kind else {
+            panic!("{claim:?}")
+        };
+        chain.links.last().cloned().expect("a link")
+    };
+    let src = "claim [w] w^2 = k/I by [eom], [shm] comparing coefficients of θ  % why";
+    let l = link(src);
+    let Some((By::Labels(ls), by_span)) = &l.by else {
+        panic!("{l:?}")
+    };
+    assert_eq!(
+        at(src, *by_span),
+        "by [eom], [shm] comparing coefficients of θ"
+    );
+    assert_eq!(
+        ls.iter().map(|l| l.name.as_str()).collect::<Vec<_>>(),
+        ["eom", "shm"]
+    );
+    let name = l.compare.expect("a name compared");
+    assert_eq!((name.name.as_str(), at(src, name.span)), ("theta", "θ"));
+    // Before `where`, too.
+    let l = link("claim [w] w^2 = k/I by [eom] comparing coefficients of x where k = 2");
+    assert_eq!(l.compare.map(|n| n.name), Some("x".to_string()));
+    // Anything else after the labels is words.
+    for words in [
+        "by [eom] comparing coefficients",
+        "by [eom] comparing coefficients of x and y",
+        "by [eom] comparing terms of x",
+        "by comparing coefficients of x",
+    ] {
+        let l = link(&format!("claim a = b {words}"));
+        assert!(matches!(l.by, Some((By::Text(_), _))), "{words}: {l:?}");
+        assert_eq!(l.compare, None, "{words}");
+    }
+}
