@@ -815,9 +815,23 @@ impl<'a> Builder<'a> {
                 let flag = status.map_or(Some(Mark::NotChecked), mark);
                 let by = link.by.as_ref().map(|(by, _)| match by {
                     By::Text(t) => Just::Text(words_and_math(t, &self.ctx)),
-                    By::Labels(ls) => {
-                        Just::Labels(ls.iter().map(|l| self.number(&l.name)).collect())
-                    }
+                    By::Labels(ls) => match &link.compare {
+                        // `by (3), (4), comparing coefficients of θ`.
+                        Some(x) => {
+                            let cited: Vec<String> = ls
+                                .iter()
+                                .map(|l| format!("({})", self.number(&l.name)))
+                                .collect();
+                            Just::Text(vec![
+                                Inline::Text(format!(
+                                    "{}, comparing coefficients of ",
+                                    cited.join(", ")
+                                )),
+                                Inline::Math(super::expr::symbol(&x.name)),
+                            ])
+                        }
+                        None => Just::Labels(ls.iter().map(|l| self.number(&l.name)).collect()),
+                    },
                 });
                 let where_ = (k + 1 == n && !where_.is_empty())
                     .then(|| format!("\\text{{where }} {}", assignments(where_, &self.ctx)));
