@@ -390,7 +390,8 @@ impl Poly {
         if iterate_is_cheaper(self.len(), k) {
             // A short sum: multiplying by it k − 1 times touches far fewer terms than
             // squaring (the last squaring alone costs |self^(k/2)|²).
-            if let Some(out) = pow_packed(self, k)? {
+            // (A square is one product: the packed path of `mul` already serves it.)
+            if let Some(out) = (k > 2).then(|| pow_packed(self, k)).transpose()?.flatten() {
                 return Ok(out);
             }
             let mut result = self.clone();
@@ -416,11 +417,22 @@ impl Poly {
 
     /// The atoms occurring, sorted.
     pub fn atoms(&self) -> Vec<AtomId> {
-        // The degree table visits each pair once; no sort of every occurrence.
-        super::pack::degrees(self)
-            .into_iter()
-            .map(|t| t.0)
-            .collect()
+        if self.terms.len() > 32 {
+            // A long polynomial: the degree table visits each pair once, where sorting
+            // every occurrence costs a logarithm more.
+            return super::pack::degrees(self)
+                .into_iter()
+                .map(|t| t.0)
+                .collect();
+        }
+        let mut v: Vec<AtomId> = self
+            .terms
+            .iter()
+            .flat_map(|(m, _)| m.pairs().iter().map(|p| p.0))
+            .collect();
+        v.sort_unstable();
+        v.dedup();
+        v
     }
 
     /// Whether atom `a` occurs.
