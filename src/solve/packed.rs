@@ -45,10 +45,14 @@ impl Ring {
                 }
             }
             for (a, d) in row_max {
-                *bound.entry(a).or_insert(0) += d;
+                let slot = bound.entry(a).or_insert(0);
+                *slot = slot.saturating_add(d);
             }
         }
-        let fields: Vec<_> = bound.iter().map(|(&a, &d)| (a, 2 * d)).collect();
+        let fields: Vec<_> = bound
+            .iter()
+            .map(|(&a, &d)| (a, d.saturating_mul(2)))
+            .collect();
         let pk = Packing::new(&fields)?;
         let limit = bound
             .iter()
@@ -101,8 +105,9 @@ impl Ring {
             return a
                 .iter()
                 .map(|&(m, c)| {
-                    (c % cb == 0).then_some(())?;
-                    Some((self.pk.div(m, mb, self.limit)?, c / cb))
+                    // checked: i128::MIN / −1 overflows.
+                    (c.checked_rem(cb)? == 0).then_some(())?;
+                    Some((self.pk.div(m, mb, self.limit)?, c.checked_div(cb)?))
                 })
                 .collect();
         }
@@ -110,10 +115,10 @@ impl Ring {
         let mut q: P = Vec::new();
         while let Some((mr, cr)) = r.pop_last() {
             let m = self.pk.div(mr, mb, self.limit)?;
-            if cr % cb != 0 {
+            if cr.checked_rem(cb)? != 0 {
                 return None;
             }
-            let c = cr / cb;
+            let c = cr.checked_div(cb)?;
             for &(mt, ct) in rest {
                 // mt ≤ deg b and m ≤ the bound: the fields (twice the bound) hold the sum.
                 let v = ct.checked_mul(c)?;
