@@ -803,10 +803,11 @@ def ensure_venv():
 def build_rigor():
     print("building rigor (cargo build --release --benches) ...", file=sys.stderr)
     subprocess.check_call(["cargo", "build", "--release", "--benches", "--bins", "-q"], cwd=REPO)
-    cands = [p for p in glob.glob(os.path.join(REPO, "target", "release", "deps", "cell-*"))
+    target = os.environ.get("CARGO_TARGET_DIR") or os.path.join(REPO, "target")
+    cands = [p for p in glob.glob(os.path.join(target, "release", "deps", "cell-*"))
              if os.access(p, os.X_OK) and not p.endswith(".d")]
     cell = max(cands, key=os.path.getmtime)
-    return cell, os.path.join(REPO, "target", "release", "rigor")
+    return cell, os.path.join(target, "release", "rigor")
 
 
 def limit_child():

@@ -143,11 +143,19 @@ impl Mono {
 
     /// The greatest common divisor of two monomials.
     pub fn gcd(&self, other: &Mono) -> Mono {
-        let mut out = Vec::new();
-        for &(a, e) in &self.0 {
-            let f = other.exp(a);
-            if f > 0 {
-                out.push((a, e.min(f)));
+        // Both sorted by atom: one merge.
+        let (a, b) = (&self.0, &other.0);
+        let mut out = Vec::with_capacity(a.len().min(b.len()));
+        let (mut i, mut j) = (0, 0);
+        while let (Some(&(x, e)), Some(&(y, f))) = (a.get(i), b.get(j)) {
+            match x.cmp(&y) {
+                Ordering::Less => i += 1,
+                Ordering::Greater => j += 1,
+                Ordering::Equal => {
+                    out.push((x, e.min(f)));
+                    i += 1;
+                    j += 1;
+                }
             }
         }
         Mono(out)

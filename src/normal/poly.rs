@@ -390,6 +390,10 @@ impl Poly {
         if iterate_is_cheaper(self.len(), k) {
             // A short sum: multiplying by it k − 1 times touches far fewer terms than
             // squaring (the last squaring alone costs |self^(k/2)|²).
+            // (A square is one product: the packed path of `mul` already serves it.)
+            if let Some(out) = (k > 2).then(|| pow_packed(self, k)).transpose()?.flatten() {
+                return Ok(out);
+            }
             let mut result = self.clone();
             for _ in 1..k {
                 result = result.mul(self)?;
@@ -413,6 +417,14 @@ impl Poly {
 
     /// The atoms occurring, sorted.
     pub fn atoms(&self) -> Vec<AtomId> {
+        if self.terms.len() > 32 {
+            // A long polynomial: the degree table visits each pair once, where sorting
+            // every occurrence costs a logarithm more.
+            return super::pack::degrees(self)
+                .into_iter()
+                .map(|t| t.0)
+                .collect();
+        }
         let mut v: Vec<AtomId> = self
             .terms
             .iter()
@@ -616,6 +628,102 @@ fn mul_packed(
     }))
 }
 
+/// `p^k` by k − 1 multiplications by `p`, all on packed monomials with `i128`
+/// coefficients (one packing for the final degrees, no conversion between the steps);
+/// `None` when the monomials do not pack or a coefficient would overflow (the caller
+/// then multiplies on [`Poly`]s).
+fn pow_packed(p: &Poly, k: u64) -> Result<Option<Poly>, Limit> {
+    let fields: Vec<(AtomId, u64)> = super::pack::degrees(p)
+        .into_iter()
+        .map(|(a, d)| (a, d.saturating_mul(k)))
+        .collect();
+    let Some(pk) = super::pack::Packing::new(&fields) else {
+        return Ok(None);
+    };
+    let (scale, ints) = integer_form(p);
+    let Some(base) = ints
+        .iter()
+        .map(|(m, c)| Some((pk.pack(m)?, num_traits::ToPrimitive::to_i128(c)?)))
+        .collect::<Option<Vec<(u128, i128)>>>()
+    else {
+        return Ok(None);
+    };
+    let mut acc = base.clone();
+    for _ in 1..k {
+        // Each term of the base shifts `acc` in order (the fields hold the final
+        // degrees: no carry); the shifted copies are merged pairwise.
+        let mut parts: Vec<Vec<(u128, i128)>> = Vec::with_capacity(base.len());
+        for &(m, c) in &base {
+            let Some(part) = acc
+                .iter()
+                .map(|&(x, d)| Some((x + m, d.checked_mul(c)?)))
+                .collect::<Option<Vec<_>>>()
+            else {
+                return Ok(None);
+            };
+            parts.push(part);
+        }
+        while parts.len() > 1 {
+            let mut next = Vec::with_capacity(parts.len().div_ceil(2));
+            let mut it = parts.into_iter();
+            while let Some(a) = it.next() {
+                next.push(match it.next() {
+                    Some(b) => match merge_packed(&a, &b) {
+                        Some(v) => v,
+                        None => return Ok(None),
+                    },
+                    None => a,
+                });
+            }
+            parts = next;
+        }
+        acc = parts.pop().unwrap_or_default();
+        if acc.len() > max_terms() {
+            return Err(Limit::terms());
+        }
+        check_deadline()?;
+    }
+    let Ok(k32) = u32::try_from(k) else {
+        return Ok(None);
+    };
+    let scale = pow_q_checked(&scale, k32)?;
+    Ok(Some(Poly {
+        terms: acc
+            .into_iter()
+            .map(|(x, c)| (pk.unpack(x), scale_int(c, &scale)))
+            .collect(),
+    }))
+}
+
+/// The sum of two ascending packed polynomials, `None` on overflow.
+fn merge_packed(a: &[(u128, i128)], b: &[(u128, i128)]) -> Option<Vec<(u128, i128)>> {
+    let mut out = Vec::with_capacity(a.len() + b.len());
+    let (mut i, mut j) = (0, 0);
+    while let (Some(&x), Some(&y)) = (a.get(i), b.get(j)) {
+        match x.0.cmp(&y.0) {
+            std::cmp::Ordering::Less => {
+                out.push(x);
+                i += 1;
+            }
+            std::cmp::Ordering::Greater => {
+                out.push(y);
+                j += 1;
+            }
+            std::cmp::Ordering::Equal => {
+                let c = x.1.checked_add(y.1)?;
+                if c != 0 {
+                    out.push((x.0, c));
+                }
+                i += 1;
+                j += 1;
+            }
+        }
+    }
+    out.extend_from_slice(a.get(i..).unwrap_or(&[]));
+    out.extend_from_slice(b.get(j..).unwrap_or(&[]));
+    Some(out)
+}
+
 /// `c · scale` for an integer `c`.
 fn scale_int(c: i128, scale: &Q) -> Q {
     if scale.is_one() {
@@ -721,4 +829,57 @@ fn estimate_pow_terms(n: usize, k: u64) -> u128 {
         }
     }
     r
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn any_poly() -> impl Strategy<Value = Poly> {
+        let term = (
+            proptest::collection::vec((0u32..4, 1u32..3), 0..3),
+            -3i64..=3,
+            1i64..=3,
+        );
+        proptest::collection::vec(term, 2..5).prop_map(|ts| {
+            Poly::from_terms(
+                ts.into_iter()
+                    .filter_map(|(m, n, d)| {
+                        let m = m.into_iter().map(|(a, e)| (AtomId::from_index(a), e));
+                        Some((
+                            Mono::from_pairs(m.collect())?,
+                            Q::new(BigInt::from(n), BigInt::from(d)),
+                        ))
+                    })
+                    .collect(),
+            )
+        })
+    }
+
+    proptest! {
+        /// The packed power is the product of k copies, term for term.
+        #[test]
+        fn packed_power_is_repeated_product(p in any_poly(), k in 1u64..7) {
+            let mut want = p.clone();
+            for _ in 1..k {
+                want = want.mul(&p).unwrap_or_else(|_| Poly::zero());
+            }
+            match pow_packed(&p, k) {
+                Ok(Some(got)) => prop_assert_eq!(got, want),
+                other => return Err(TestCaseError::fail(format!("small powers pack: {other:?}"))),
+            }
+        }
+    }
+
+    /// A coefficient past `i128` leaves the packed power (the general path answers).
+    #[test]
+    fn packed_power_overflow_falls_back() {
+        let x = Poly::atom(AtomId::from_index(0));
+        let p = x.add(&Poly::int(1 << 40));
+        assert_eq!(pow_packed(&p, 4), Ok(None));
+        let p4 = p.pow(4).unwrap_or_else(|e| panic!("{e:?}"));
+        assert_eq!(p4.len(), 5);
+        assert_eq!(p4.as_constant(), None);
+    }
 }

@@ -27,25 +27,68 @@ fn sorted_factors(m: &Mono) -> Vec<(AtomId, u32)> {
     f
 }
 
-/// Print order of monomials: higher degree first, then by content.
-fn cmp_monos(a: &Mono, b: &Mono) -> Ordering {
-    b.degree().cmp(&a.degree()).then_with(|| {
-        let (fa, fb) = (sorted_factors(a), sorted_factors(b));
-        for (x, y) in fa.iter().zip(fb.iter()) {
-            let o = cmp_atoms(x.0, y.0).then(y.1.cmp(&x.1));
+/// Terms of a polynomial in print order.
+fn print_terms(p: &Poly) -> Vec<(Mono, Q)> {
+    let keys = print_keys(p);
+    let mut order: Vec<usize> = (0..p.len()).collect();
+    order.sort_by(|&i, &j| cmp_keys(&keys[i], &keys[j]));
+    order.into_iter().map(|i| p.terms()[i].clone()).collect()
+}
+
+/// The first term of `p` in print order.
+fn first_print_term(p: &Poly) -> Option<&(Mono, Q)> {
+    let keys = print_keys(p);
+    (0..p.len())
+        .min_by(|&i, &j| cmp_keys(&keys[i], &keys[j]))
+        .map(|i| &p.terms()[i])
+}
+
+/// A monomial's sort key: its degree and its factors as `(rank, exponent)` in print
+/// order, where `rank` numbers the polynomial's atoms in [`cmp_atoms`] order (atoms
+/// that compare equal share a rank). Comparing keys with [`cmp_keys`] is [`cmp_monos`]
+/// without comparing atoms again for every pair of terms.
+type PrintKey = (u64, Vec<(usize, u32)>);
+
+fn print_keys(p: &Poly) -> Vec<PrintKey> {
+    let mut atoms = p.atoms();
+    atoms.sort_by(|a, b| cmp_atoms(*a, *b));
+    let mut ranks: Vec<(AtomId, usize)> = Vec::with_capacity(atoms.len());
+    for (i, &a) in atoms.iter().enumerate() {
+        let rank = match (i.checked_sub(1).and_then(|j| atoms.get(j)), ranks.last()) {
+            (Some(&prev), Some(&(_, r))) if cmp_atoms(prev, a) == Ordering::Equal => r,
+            _ => i,
+        };
+        ranks.push((a, rank));
+    }
+    ranks.sort_unstable_by_key(|t| t.0);
+    let rank_of = |a: AtomId| {
+        ranks
+            .binary_search_by_key(&a, |t| t.0)
+            .map_or(usize::MAX, |i| ranks[i].1)
+    };
+    p.terms()
+        .iter()
+        .map(|(m, _)| {
+            let mut f: Vec<(usize, u32)> =
+                m.pairs().iter().map(|&(a, e)| (rank_of(a), e)).collect();
+            // A stable sort, as `sorted_factors`: equal ranks keep the id order.
+            f.sort_by_key(|t| t.0);
+            (m.degree(), f)
+        })
+        .collect()
+}
+
+/// [`cmp_monos`] on keys from [`print_keys`].
+fn cmp_keys(a: &PrintKey, b: &PrintKey) -> Ordering {
+    b.0.cmp(&a.0).then_with(|| {
+        for (x, y) in a.1.iter().zip(b.1.iter()) {
+            let o = x.0.cmp(&y.0).then(y.1.cmp(&x.1));
             if o != Ordering::Equal {
                 return o;
             }
         }
-        fb.len().cmp(&fa.len())
+        b.1.len().cmp(&a.1.len())
     })
-}
-
-/// Terms of a polynomial in print order.
-fn print_terms(p: &Poly) -> Vec<(Mono, Q)> {
-    let mut t: Vec<(Mono, Q)> = p.terms().to_vec();
-    t.sort_by(|a, b| cmp_monos(&a.0, &b.0));
-    t
 }
 
 /// The plain text of a normal form.
@@ -113,8 +156,7 @@ pub fn render(r: &Rat, style: Style) -> String {
 /// `p = c · p'` with `p'` having integer coprime coefficients and a positive first printed term.
 fn primitive_for_print(p: &Poly) -> (Q, Poly) {
     let mut c = p.content();
-    let first = print_terms(p).into_iter().next();
-    if first.is_some_and(|t| t.1.is_negative()) {
+    if first_print_term(p).is_some_and(|t| t.1.is_negative()) {
         c = -c;
     }
     (c.clone(), p.scale(&c.recip()))
@@ -123,9 +165,7 @@ fn primitive_for_print(p: &Poly) -> (Q, Poly) {
 /// Whether a kept factor's sum prints with a negative first term, so that it is printed
 /// negated: `(x - a)` rather than the `(a - x)` the normal form may hold.
 fn reads_negated(p: &Poly) -> bool {
-    print_terms(&oriented_factors(p))
-        .first()
-        .is_some_and(|t| t.1.is_negative())
+    first_print_term(&oriented_factors(p)).is_some_and(|t| t.1.is_negative())
 }
 
 /// `p` with the sign of each term adjusted for the kept factors printed negated (an odd
@@ -492,4 +532,62 @@ pub fn symbol_latex(s: &str) -> String {
         out = format!("{out}_{{{sub}}}");
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::normal::atom::{intern, sym};
+    use num_traits::Zero;
+    use proptest::prelude::*;
+
+    /// Print order of monomials: higher degree first, then by content.
+    fn cmp_monos(a: &Mono, b: &Mono) -> Ordering {
+        b.degree().cmp(&a.degree()).then_with(|| {
+            let (fa, fb) = (sorted_factors(a), sorted_factors(b));
+            for (x, y) in fa.iter().zip(fb.iter()) {
+                let o = cmp_atoms(x.0, y.0).then(y.1.cmp(&x.1));
+                if o != Ordering::Equal {
+                    return o;
+                }
+            }
+            fb.len().cmp(&fa.len())
+        })
+    }
+
+    /// Atoms whose print order is not their id order: mixed case, and atoms of
+    /// other kinds (compared by their text).
+    fn atoms() -> Vec<AtomId> {
+        let mut v: Vec<AtomId> = ["b", "A", "a", "B", "x2", "x10"]
+            .iter()
+            .map(|n| sym(n))
+            .collect();
+        v.push(intern(Atom::Sqrt(Poly::atom(sym("b")))));
+        v.push(intern(Atom::Sqrt(Poly::atom(sym("A")))));
+        v
+    }
+
+    proptest! {
+        /// The keyed sort is the comparison sort it replaces, term for term.
+        #[test]
+        fn keyed_order_is_the_monomial_comparison(
+            ts in proptest::collection::vec(
+                (proptest::collection::vec((0usize..8, 1u32..4), 0..4), 1i64..5), 0..12)
+        ) {
+            let ids = atoms();
+            let p = Poly::from_terms(
+                ts.into_iter()
+                    .filter_map(|(m, c)| {
+                        let m = m.into_iter().map(|(i, e)| (ids[i], e)).collect();
+                        Some((Mono::from_pairs(m)?, Q::from_integer(BigInt::from(c))))
+                    })
+                    .filter(|t| !t.1.is_zero())
+                    .collect(),
+            );
+            let mut want: Vec<(Mono, Q)> = p.terms().to_vec();
+            want.sort_by(|a, b| cmp_monos(&a.0, &b.0));
+            prop_assert_eq!(print_terms(&p), want.clone());
+            prop_assert_eq!(first_print_term(&p), want.first());
+        }
+    }
 }

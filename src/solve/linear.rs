@@ -5,6 +5,7 @@
 //! The checker does not use this solver (it eliminates fact by fact, `check/elimination.rs`);
 //! it is the library's solver and the one the benchmarks time.
 
+use super::packed;
 use crate::normal::gcd::{div_exact, gcd};
 use crate::normal::mono::Mono;
 use crate::normal::{Limit, NormError, Poly, Rat, Q};
@@ -115,13 +116,22 @@ pub fn solve(a: &[Vec<Rat>], b: &[Rat]) -> Result<Vec<Rat>, LinearError> {
     // fraction-free (Bareiss) elimination per determinant. Every intermediate entry is
     // a minor, never a minor times a whole numerator as in back substitution or the
     // upper half of Gauss–Jordan.
-    let det = determinant(columns(&m, n, None))?;
+    let (det, nums) = match packed_determinants(&m, n) {
+        Some(r) => r,
+        None => {
+            let det = determinant(columns(&m, n, None))?;
+            if det.is_zero() {
+                return Err(LinearError::Singular);
+            }
+            let nums = (0..n)
+                .map(|i| determinant(columns(&m, n, Some(i))))
+                .collect::<Result<Vec<Poly>, LinearError>>()?;
+            (det, nums)
+        }
+    };
     if det.is_zero() {
         return Err(LinearError::Singular);
     }
-    let nums = (0..n)
-        .map(|i| determinant(columns(&m, n, Some(i))))
-        .collect::<Result<Vec<Poly>, LinearError>>()?;
     let mut out = Vec::with_capacity(n);
     for (num, c) in nums.into_iter().zip(col_factor) {
         let y = Rat::new(num, det.clone())?;
@@ -139,7 +149,7 @@ pub fn solve(a: &[Vec<Rat>], b: &[Rat]) -> Result<Vec<Rat>, LinearError> {
 /// sign that makes its determinant `det(A with column i replaced by b)`. The
 /// right-hand side is usually the least structured column: eliminated last, it leaves
 /// the elimination of the others as cheap as in `det A`.
-fn columns(m: &[Vec<Poly>], n: usize, i: Option<usize>) -> (Vec<Vec<Poly>>, bool) {
+fn columns<T: Clone>(m: &[Vec<T>], n: usize, i: Option<usize>) -> (Vec<Vec<T>>, bool) {
     let keep: Vec<usize> = match i {
         None => (0..n).collect(),
         Some(i) => (0..n)
@@ -155,11 +165,63 @@ fn columns(m: &[Vec<Poly>], n: usize, i: Option<usize>) -> (Vec<Vec<Poly>>, bool
     (rows, i.is_some_and(|i| (n - 1 - i) % 2 == 1))
 }
 
-/// The row (from `k` down) with the shortest nonzero entry in column `k`.
-fn pivot_row(m: &[Vec<Poly>], k: usize) -> Option<usize> {
+/// `det A` and Cramer's numerators on packed integer polynomials ([`packed`]), `None`
+/// when the matrix does not pack or an entry outgrows the packed form (the general
+/// path then runs). A singular `A` gives a zero determinant.
+fn packed_determinants(m: &[Vec<Poly>], n: usize) -> Option<(Poly, Vec<Poly>)> {
+    let ring = packed::Ring::new(m)?;
+    let pm = m
+        .iter()
+        .map(|r| r.iter().map(|e| ring.pack(e)).collect::<Option<Vec<_>>>())
+        .collect::<Option<Vec<_>>>()?;
+    let det = determinant_packed(&ring, columns(&pm, n, None))?;
+    if det.is_empty() {
+        return Some((Poly::zero(), Vec::new()));
+    }
+    let nums = (0..n)
+        .map(|i| determinant_packed(&ring, columns(&pm, n, Some(i))).map(|p| ring.unpack(&p)))
+        .collect::<Option<Vec<Poly>>>()?;
+    Some((ring.unpack(&det), nums))
+}
+
+/// [`determinant`] on packed polynomials.
+fn determinant_packed(
+    ring: &packed::Ring,
+    (mut m, negate): (Vec<Vec<packed::P>>, bool),
+) -> Option<packed::P> {
+    let n = m.len();
+    let mut prev: packed::P = vec![(0, 1)];
+    let mut negate = negate;
+    for k in 0..n {
+        let Some(p) = pivot_row(&m, k, |e: &packed::P| e.len()) else {
+            return Some(Vec::new());
+        };
+        if p != k {
+            m.swap(k, p);
+            negate = !negate;
+        }
+        for i in k + 1..n {
+            for j in k + 1..n {
+                m[i][j] = ring.bareiss_entry(&m[k][k], &m[i][j], &m[i][k], &m[k][j], &prev)?;
+            }
+            m[i][k] = Vec::new();
+        }
+        prev = std::mem::take(&mut m[k][k]);
+    }
+    if negate {
+        for t in &mut prev {
+            t.1 = t.1.checked_neg()?;
+        }
+    }
+    Some(prev)
+}
+
+/// The row (from `k` down) with the shortest nonzero entry in column `k` (`len`: the
+/// number of terms, 0 for zero).
+fn pivot_row<T>(m: &[Vec<T>], k: usize, len: impl Fn(&T) -> usize) -> Option<usize> {
     (k..m.len())
-        .filter(|&r| !m[r][k].is_zero())
-        .min_by_key(|&r| m[r][k].len())
+        .filter(|&r| len(&m[r][k]) > 0)
+        .min_by_key(|&r| len(&m[r][k]))
 }
 
 /// `(a·b − c·d) / prev`, exact by Bareiss's theorem.
@@ -179,7 +241,7 @@ fn determinant((mut m, negate): (Vec<Vec<Poly>>, bool)) -> Result<Poly, LinearEr
     let mut prev = Poly::one();
     let mut negate = negate;
     for k in 0..n {
-        let Some(p) = pivot_row(&m, k) else {
+        let Some(p) = pivot_row(&m, k, Poly::len) else {
             return Ok(Poly::zero());
         };
         if p != k {
@@ -211,4 +273,121 @@ fn row_content<'a>(entries: impl Iterator<Item = &'a Poly>) -> Mono {
         }
     }
     g.unwrap_or_else(Mono::one)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::normal::AtomId;
+    use num_bigint::BigInt;
+    use proptest::prelude::*;
+
+    /// A small polynomial from `(atom, exponent)` lists and integer coefficients
+    /// (atoms 0–3, so products of entries share atoms and cancel).
+    fn poly(terms: &[(Vec<(u32, u32)>, i64)]) -> Poly {
+        Poly::from_terms(
+            terms
+                .iter()
+                .filter_map(|(m, c)| {
+                    let m = m.iter().map(|&(a, e)| (AtomId::from_index(a), e));
+                    Some((
+                        Mono::from_pairs(m.collect())?,
+                        Q::from_integer(BigInt::from(*c)),
+                    ))
+                })
+                .collect(),
+        )
+    }
+
+    fn any_poly() -> impl Strategy<Value = Poly> {
+        let term = (
+            proptest::collection::vec((0u32..4, 1u32..3), 0..3),
+            -4i64..=4,
+        );
+        proptest::collection::vec(term, 0..4).prop_map(|t| poly(&t))
+    }
+
+    fn any_matrix() -> impl Strategy<Value = Vec<Vec<Poly>>> {
+        (1usize..=4).prop_flat_map(|n| {
+            proptest::collection::vec(proptest::collection::vec(any_poly(), n + 1), n)
+        })
+    }
+
+    /// Cramer's numerators and `det A` by the general (unpacked) path.
+    fn general(m: &[Vec<Poly>]) -> Result<(Poly, Vec<Poly>), LinearError> {
+        let n = m.len();
+        let det = determinant(columns(m, n, None))?;
+        let nums = (0..n)
+            .map(|i| determinant(columns(m, n, Some(i))))
+            .collect::<Result<Vec<Poly>, LinearError>>()?;
+        Ok((det, nums))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        /// The packed determinants are the general path's, term for term.
+        #[test]
+        fn packed_agrees_with_general(m in any_matrix()) {
+            let n = m.len();
+            let Ok((det, nums)) = general(&m) else {
+                return Err(TestCaseError::fail("the general path failed on a small matrix"));
+            };
+            let packed = packed_determinants(&m, n);
+            prop_assert!(packed.is_some(), "small integer matrices pack");
+            let Some((pdet, pnums)) = packed else { unreachable!() };
+            prop_assert_eq!(&pdet, &det);
+            if !det.is_zero() {
+                prop_assert_eq!(pnums, nums);
+            }
+        }
+
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+
+        /// The solution satisfies every equation of the system (exactly, by
+        /// substitution), and a singular matrix is reported as such.
+        #[test]
+        fn solution_satisfies_the_system(m in any_matrix().prop_filter("n ≤ 3", |m| m.len() <= 3)) {
+            let n = m.len();
+            let rat = |p: &Poly| Rat::poly(p.clone()).unwrap_or_else(|_| Rat::zero());
+            let a: Vec<Vec<Rat>> = m.iter().map(|r| r[..n].iter().map(rat).collect()).collect();
+            let b: Vec<Rat> = m.iter().map(|r| rat(&r[n])).collect();
+            let Ok((det, _)) = general(&m) else {
+                return Err(TestCaseError::fail("the general path failed on a small matrix"));
+            };
+            match solve(&a, &b) {
+                Err(LinearError::Singular) => prop_assert!(det.is_zero()),
+                Err(e) => return Err(TestCaseError::fail(format!("{e}"))),
+                Ok(x) => {
+                    prop_assert!(!det.is_zero());
+                    for (row, rhs) in a.iter().zip(&b) {
+                        let mut lhs = Rat::zero();
+                        for (c, xi) in row.iter().zip(&x) {
+                            lhs = lhs.add(&c.mul(xi).map_err(|e| TestCaseError::fail(format!("{e}")))?)
+                                .map_err(|e| TestCaseError::fail(format!("{e}")))?;
+                        }
+                        prop_assert_eq!(&lhs, rhs);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Coefficients beyond `i128` leave the packed path (the general one answers).
+    #[test]
+    fn huge_coefficients_fall_back() {
+        let big = Poly::constant(Q::from_integer(BigInt::from(i128::MAX) * 4));
+        let x = Poly::atom(AtomId::from_index(0));
+        let m = vec![
+            vec![big.clone(), x.clone(), Poly::one()],
+            vec![x, big, Poly::one()],
+        ];
+        assert!(packed_determinants(&m, 2).is_none());
+        let (det, nums) = general(&m).unwrap_or_else(|e| panic!("{e}"));
+        assert!(!det.is_zero());
+        assert_eq!(nums.len(), 2);
+    }
 }

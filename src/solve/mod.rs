@@ -1,5 +1,6 @@
 //! Exact solution of linear systems whose coefficients are normal forms.
 
 pub mod linear;
+mod packed;
 
 pub use linear::{solve, LinearError};

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Issue 34 item 3: W2 at size N as whole commands, the mass and I_xx each one
+# `rigor simplify` process (start, parse, integrate, print), RUNS times each. Prints
+# the median, min and max of the pair's wall time and each process's peak RSS
+# (GNU time, when installed). Compare with the in-process FLINT figure of
+# `bench/compare.py --only W2`.
+#
+#   bench/whole_commands.sh [RIGOR_BINARY] [N] [RUNS]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bin="${1:-${CARGO_TARGET_DIR:-target}/release/rigor}"
+n="${2:-16}"
+runs="${3:-11}"
+mass="int(int(int((1+x+y+z)^$n, x, 0, a), y, 0, b), z, 0, c)"
+ixx="int(int(int((1+x+y+z)^$n (y^2 + z^2), x, 0, a), y, 0, b), z, 0, c)"
+times=()
+for ((r = 0; r < runs; r++)); do
+  start=$(date +%s%N)
+  "$bin" simplify "$mass" >/dev/null
+  "$bin" simplify "$ixx" >/dev/null
+  end=$(date +%s%N)
+  times+=("$(((end - start) / 1000))")
+done
+sorted=($(printf '%s\n' "${times[@]}" | sort -n))
+median=${sorted[$((runs / 2))]}
+printf 'W2 n=%s, two processes, %s runs: median %.2f ms, min %.2f ms, max %.2f ms\n' \
+  "$n" "$runs" "$(echo "$median / 1000" | bc -l)" "$(echo "${sorted[0]} / 1000" | bc -l)" \
+  "$(echo "${sorted[$((runs - 1))]} / 1000" | bc -l)"
+if [ -x /usr/bin/time ]; then
+  for e in "$mass" "$ixx"; do
+    kb=$( { /usr/bin/time -f '%M' "$bin" simplify "$e" >/dev/null; } 2>&1 | tail -1)
+    echo "  peak RSS ${kb} kB: rigor simplify '${e:0:40}…'"
+  done
+fi
