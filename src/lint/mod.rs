@@ -6,12 +6,14 @@
 
 use crate::diag::{Code, Mistake};
 mod display;
+mod carry;
 mod extract;
 mod mass;
 mod partial;
 mod premises;
 mod reader;
 mod reason;
+mod sound;
 
 use crate::check::{check_source, FileReport, MemoryResolver, Options, Status};
 use crate::diag::{Diagnostic, LineIndex};
@@ -55,6 +57,12 @@ pub struct ChainReport {
     pub reason: Option<Reason>,
     /// The `rigor:` comment that would make it checkable, where rigor knows it.
     pub comment: Option<String>,
+    /// For a verified chain: the lines of the document whose relations its links were
+    /// verified from (the premises it rests on), in order.
+    pub from: Vec<usize>,
+    /// For a verified chain: the definitions of earlier sections it used, each as
+    /// written (`I_G = \frac{m L^2}{12}`) with its line.
+    pub using: Vec<(String, usize)>,
 }
 
 /// Everything found in one document.
@@ -112,6 +120,11 @@ struct Placed {
     unwritten: bool,
     /// The names of its symbols.
     symbols: Vec<String>,
+    /// Whether its first link, stated, is not taken as a premise: with what was stated
+    /// before it, it could hold only where one of its sides is zero (`sound::unfit`).
+    contradicts: bool,
+    /// The statements that take its later links as stated.
+    givens: Vec<Part>,
 }
 
 /// What the notes derive under one heading.
@@ -126,6 +139,9 @@ struct Scope {
     /// Where the chains start that are statements of the prose (an inline relation of
     /// one link): reported only when they hold, fail or define a symbol.
     quiet: HashSet<usize>,
+    /// The definitions of earlier sections (`I_G = \frac{m L^2}{12}`), each a chain of
+    /// one link: in scope here unless the scope states its symbol again.
+    carried: Vec<Chain>,
 }
 
 enum Item {
@@ -205,6 +221,13 @@ struct Build<'a> {
     cache: &'a Checked,
     /// Whether the chain being placed is a premise the notes impose.
     imposing: bool,
+    /// Where the links start (document offsets) whose relations are not taken as
+    /// stated: they contradict what was stated before them, or they are mistakes
+    /// (`sound::unfit`).
+    skip: &'a HashSet<usize>,
+    /// The definitions of earlier sections written into this derivation: name, the
+    /// definition as the notes write it, and where it starts in the document.
+    carried: Vec<(String, String, usize)>,
 }
 
 impl Scope {
@@ -215,6 +238,7 @@ impl Scope {
             names: names.clone(),
             items: Vec::new(),
             quiet: HashSet::new(),
+            carried: Vec::new(),
         }
     }
 
@@ -222,7 +246,7 @@ impl Scope {
     fn build<'a>(
         &self,
         doc: &str,
-        (time, solve): (&'a HashSet<String>, &'a HashSet<String>),
+        (time, solve, skip): (&'a HashSet<String>, &'a HashSet<String>, &'a HashSet<usize>),
         cache: &'a Checked,
     ) -> Build<'a> {
         let mut b = Build {
@@ -235,7 +259,10 @@ impl Scope {
             solve,
             cache,
             imposing: false,
+            skip,
+            carried: Vec::new(),
         };
+        carry::place_carried(self, doc, &mut b);
         for item in &self.items {
             match item {
                 Item::Directive(text, names) => {
@@ -286,8 +313,9 @@ impl Scope {
             }
         }
         let mut solve = HashSet::new();
-        for round in 0..3 {
-            let b = self.build(doc.text(), (&time, &solve), cache);
+        let mut skip = HashSet::new();
+        for round in 0..ROUNDS {
+            let b = self.build(doc.text(), (&time, &solve, &skip), cache);
             if b.placed.is_empty() {
                 return;
             }
@@ -301,41 +329,74 @@ impl Scope {
                 })
                 .filter(|n| !b.known.contains(n) && !solve.contains(n))
                 .collect();
-            if more.is_empty() || round == 2 {
-                // A failure that positive values of the symbols the linter declared
-                // would remove is a sign the notes do not state, not a slip.
-                let positive = b
-                    .placed
-                    .iter()
-                    .any(|p| verdict(&checked, p).verdict == Verdict::Failed)
-                    .then(|| premises::positive(&b.deriv))
-                    .map(|(deriv, names)| (cache.report(name, &deriv, opts), names));
-                for p in &b.placed {
-                    let mut report = verdict(&checked, p);
-                    if let Some((again, names)) = &positive {
-                        premises::unsigned(&mut report, verdict(again, p), (&p.symbols, names));
-                    }
-                    for d in &mut report.diagnostics {
-                        document_lines(d, &b.deriv, &b.placed, doc);
-                    }
-                    let needs = report.verdict == Verdict::NeedsContext;
-                    let tail = needs.then(|| verified_tail(&checked, p)).flatten();
-                    // A verified head is reported on its own; the rest of the chain,
-                    // from the head's last expression, is what needs context.
-                    if let Some((head, from)) = needs.then(|| verified_head(&checked, p)).flatten()
-                    {
-                        report.span = Span::new(from, report.span.end);
-                        out.push(head);
-                    }
-                    out.push(report);
-                    out.extend(tail);
+            if !more.is_empty() && round < 2 {
+                solve.extend(more);
+                continue;
+            }
+            // Stated relations become premises only when they fit together: one that
+            // contradicts those before it, or a mistake, is taken back and the scope
+            // checked again without it (two slips must not make a third line follow).
+            let unfit: Vec<usize> = sound::unfit(&checked, &b, (name, doc.text()), opts)
+                .into_iter()
+                .filter(|k| !skip.contains(k))
+                .collect();
+            if !unfit.is_empty() {
+                if round + 1 < ROUNDS {
+                    skip.extend(unfit);
+                    continue;
                 }
+                // Out of rounds: nothing is verified from the facts in scope.
+                sound::distrust(&b, &checked, (name, doc), (opts, cache), out);
                 return;
             }
-            solve.extend(more);
+            report_all(&b, &checked, (name, doc), (opts, cache), out);
+            return;
         }
     }
 }
+
+/// Each chain of a scope's derivation with its verdict, in document terms.
+fn report_all(
+    b: &Build<'_>,
+    checked: &FileReport,
+    (name, doc): (&str, &LineIndex<'_>),
+    (opts, cache): (&Options, &Checked),
+    out: &mut Vec<ChainReport>,
+) {
+            // A failure that positive values of the symbols the linter declared
+            // would remove is a sign the notes do not state, not a slip.
+            let positive = b
+                .placed
+                .iter()
+                .any(|p| verdict(&checked, p).verdict == Verdict::Failed)
+                .then(|| premises::positive(&b.deriv))
+                .map(|(deriv, names)| (cache.report(name, &deriv, opts), names));
+            for p in &b.placed {
+                let mut report = verdict(&checked, p);
+                if let Some((again, names)) = &positive {
+                    premises::unsigned(&mut report, verdict(again, p), (&p.symbols, names));
+                }
+                for d in &mut report.diagnostics {
+                    document_lines(d, &b.deriv, &b.placed, doc);
+                }
+                let needs = report.verdict == Verdict::NeedsContext;
+                let tail = needs.then(|| verified_tail(&checked, p)).flatten();
+                // A verified head is reported on its own; the rest of the chain,
+                // from the head's last expression, is what needs context.
+                if let Some((head, from)) = needs.then(|| verified_head(&checked, p)).flatten()
+                {
+                    report.span = Span::new(from, report.span.end);
+                    out.push(head);
+                }
+                sound::premises_of(&mut report, (checked, p), (b, doc));
+                out.push(report);
+                out.extend(tail);
+            }
+}
+
+/// How many times a scope is checked at most (with names to solve for, then without
+/// the stated relations that do not fit).
+const ROUNDS: usize = 6;
 
 /// A link after the first of a chain.
 struct Later {
@@ -384,23 +445,33 @@ pub fn lint(name: &str, doc: &str, kind: DocKind, opts: &Options) -> LintReport 
 /// line of the `rigor:` statements is not a line of the notes: a fact on one is not
 /// cited.
 fn document_lines(d: &mut Diagnostic, deriv: &str, placed: &[Placed], doc: &LineIndex<'_>) {
-    let doc_line = |n: usize| -> Option<usize> {
-        let line_start = deriv
-            .split_inclusive('\n')
-            .take(n.checked_sub(1)?)
-            .map(str::len)
-            .sum::<usize>();
-        let line_end = line_start + deriv.get(line_start..)?.find('\n').unwrap_or(0);
-        let at = placed
-            .iter()
-            .flat_map(|p| p.first.iter().chain(p.rest.iter()).chain(p.stated.iter()))
-            .flatten()
-            .find(|(at, _, _)| *at >= line_start && *at <= line_end)?
-            .1;
-        Some(doc.line_col(at).0)
-    };
+    let doc_line = |n: usize| doc_line(n, deriv, placed, doc);
     d.message = d.message.renumber(&doc_line);
     d.notes = d.notes.iter().map(|n| n.renumber(&doc_line)).collect();
+}
+
+/// The line of the document that line `n` of the derivation came from, if it came
+/// from the notes (not from a `rigor:` statement or a declaration).
+fn doc_line(n: usize, deriv: &str, placed: &[Placed], doc: &LineIndex<'_>) -> Option<usize> {
+    let line_start = deriv
+        .split_inclusive('\n')
+        .take(n.checked_sub(1)?)
+        .map(str::len)
+        .sum::<usize>();
+    let line_end = line_start + deriv.get(line_start..)?.find('\n').unwrap_or(0);
+    let at = placed
+        .iter()
+        .flat_map(|p| {
+            p.first
+                .iter()
+                .chain(p.rest.iter())
+                .chain(p.stated.iter())
+                .chain(p.givens.iter())
+        })
+        .flatten()
+        .find(|(at, _, _)| *at >= line_start && *at <= line_end)?
+        .1;
+    Some(doc.line_col(at).0)
 }
 
 /// Writes a chain into the derivation: its new symbols declared, then as a `let` (a
@@ -416,6 +487,8 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         solve,
         cache,
         imposing,
+        skip,
+        ..
     } = b;
     let mut names = first_link_names(chain);
     let is_known = |n: &String| known.contains(n.trim_end_matches('\'')) || n == "t";
@@ -470,7 +543,7 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
             // fact once verified, and a mistake (never a fact) if not.
             let claim = write("claim", &first_link, deriv);
             let kw = if constraint { "constraint" } else { "given" };
-            stated = if firm && !constraint {
+            stated = if (firm && !constraint) || skip.contains(&chain.first.span.start) {
                 None
             } else {
                 write(kw, &first_link, deriv)
@@ -484,17 +557,19 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
     let unwritten = (first.is_none() && !states) || (rest_span.is_some() && rest.is_none());
     // Then each later link is taken as stated too, as the first is: one that does not
     // follow states something new (`m y'' = 0`), which later chains may use.
+    let mut givens = Vec::new();
     for ((prev, l), later) in chain
         .links
         .iter()
         .zip(chain.links.iter().skip(1))
         .zip(&later)
     {
-        if !later.firm {
-            let _ = write("given", &[prev.rhs.span, l.span], deriv);
+        if !later.firm && !skip.contains(&later.span.start) {
+            givens.extend(write("given", &[prev.rhs.span, l.span], deriv));
         }
     }
     let defined = (first.is_none() && states).then_some(defines).flatten();
+    let contradicts = first.is_some() && skip.contains(&chain.first.span.start);
     placed.push(Placed {
         first,
         rest,
@@ -509,6 +584,8 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         loose,
         unwritten,
         symbols: chain_names,
+        contradicts,
+        givens,
     });
 }
 
@@ -759,6 +836,8 @@ fn verdict_on(checked: &FileReport, p: &Placed) -> ChainReport {
             defines: None,
             reason: None,
             comment: None,
+            from: Vec::new(),
+            using: Vec::new(),
         };
     }
     let holds = |s: &[Status]| !s.is_empty() && s.iter().all(Status::is_verified);
@@ -782,6 +861,8 @@ fn verdict_on(checked: &FileReport, p: &Placed) -> ChainReport {
             defines: None,
             reason: None,
             comment: None,
+            from: Vec::new(),
+            using: Vec::new(),
         };
     }
     // A verified chain says what its links assume (a division the signs do not show safe).
@@ -799,6 +880,8 @@ fn verdict_on(checked: &FileReport, p: &Placed) -> ChainReport {
         defines: p.defines.clone(),
         reason: None,
         comment: None,
+        from: Vec::new(),
+        using: Vec::new(),
     };
     if let Some((s, mut d)) = rest {
         if d.iter().any(refuted) {
@@ -838,6 +921,8 @@ fn verdict_on(checked: &FileReport, p: &Placed) -> ChainReport {
             d.mistake = None;
             d.message = if p.imposed {
                 premises::IMPOSED.into()
+            } else if p.contradicts {
+                sound::CONTRADICTS.into()
             } else {
                 "needs context: this relation does not hold for every value of its symbols; the document must define or give it".into()
             };

@@ -25,6 +25,8 @@ pub(super) fn verified_tail(checked: &FileReport, p: &Placed) -> Option<ChainRep
         defines: None,
         reason: None,
         comment: None,
+        from: Vec::new(),
+        using: Vec::new(),
     })
 }
 
@@ -76,6 +78,8 @@ pub(super) fn verified_head(checked: &FileReport, p: &Placed) -> Option<(ChainRe
         defines: None,
         reason: None,
         comment: None,
+        from: Vec::new(),
+        using: Vec::new(),
     };
     Some((head, from))
 }

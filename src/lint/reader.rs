@@ -36,6 +36,8 @@ pub(super) struct Reader<'a> {
     last: Option<Expr>,
     /// The lone symbols the current display scope gave a value, with that value.
     values: HashMap<String, String>,
+    /// The definitions of the sections closed so far (`carry.rs`).
+    carried: Vec<Chain>,
     doc: &'a str,
     popts: ParseOptions,
     opts: &'a Options,
@@ -53,6 +55,7 @@ impl<'a> Reader<'a> {
             names: HashSet::new(),
             last: None,
             values: HashMap::new(),
+            carried: Vec::new(),
             doc,
             popts: ParseOptions {
                 max_depth: opts.parse.max_depth,
@@ -84,6 +87,7 @@ impl<'a> Reader<'a> {
     }
 
     fn heading(&mut self) {
+        super::carry::left_by(&self.scope, &mut self.carried);
         self.fresh_scope();
         let prose = Scope::under(&self.directives, &self.names);
         self.scopes.push(std::mem::replace(&mut self.prose, prose));
@@ -92,7 +96,8 @@ impl<'a> Reader<'a> {
 
     /// A new scope for the displays (the inline relations' scope goes on).
     fn fresh_scope(&mut self) {
-        let scope = Scope::under(&self.directives, &self.names);
+        let mut scope = Scope::under(&self.directives, &self.names);
+        scope.carried = self.carried.clone();
         self.scopes.push(std::mem::replace(&mut self.scope, scope));
         self.values.clear();
     }
@@ -265,6 +270,8 @@ fn read(
         defines: None,
         reason: Some(super::Reason::Unread),
         comment: None,
+        from: Vec::new(),
+        using: Vec::new(),
     };
     let after = e.span.end.saturating_sub(at);
     match extract::equals_after(rel, after) {
