@@ -8,6 +8,7 @@ use crate::diag::{Code, Mistake};
 mod display;
 mod carry;
 mod extract;
+mod later;
 mod mass;
 mod partial;
 mod premises;
@@ -20,6 +21,7 @@ use crate::diag::{Diagnostic, LineIndex};
 use crate::syntax::ast::{Chain, Expr, ExprKind, Func, Reading, Span};
 use crate::syntax::ParseOptions;
 pub use extract::{pieces, DocKind, Piece};
+use later::{later_is_a_mistake, later_link, later_links, later_needs, Later};
 use partial::{conditions, once, verified_head, verified_tail};
 pub use reason::Reason;
 use std::collections::{HashMap, HashSet};
@@ -125,6 +127,8 @@ struct Placed {
     contradicts: bool,
     /// The statements that take its later links as stated.
     givens: Vec<Part>,
+    /// Its first expression as the notes write it (`v`).
+    head: String,
 }
 
 /// What the notes derive under one heading.
@@ -398,17 +402,6 @@ fn report_all(
 /// the stated relations that do not fit).
 const ROUNDS: usize = 6;
 
-/// A link after the first of a chain.
-struct Later {
-    /// Where it is in the document (from its left side to the end of its right side).
-    span: Span,
-    /// Where its right side starts.
-    rhs: usize,
-    /// The symbols it brings in that nothing before it in the scope used.
-    fresh: Vec<String>,
-    /// Whether every symbol of the chain up to it is one the document declared or defined.
-    firm: bool,
-}
 
 /// Checks the chains of `doc`. Each heading starts a new scope: notes reuse letters
 /// from one section to the next (R a radius, then a reaction), so what one section
@@ -495,7 +488,10 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
     let firm = !*imposing && names.iter().all(is_known);
     let loose = premises::loose_approximations(chain, deriv);
     let constraint = is_constraint(&names, time);
-    let later = later_links(chain, &mut names, seen, &is_known);
+    let mut later = later_links(chain, &mut names, seen, &is_known);
+    for l in &mut later {
+        l.skipped = skip.contains(&l.span.start);
+    }
     seen.extend(names.iter().map(|n| n.trim_end_matches('\'').to_string()));
     let chain_names = names.clone();
     let defines = new_symbol(chain, declared, time);
@@ -586,6 +582,7 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         symbols: chain_names,
         contradicts,
         givens,
+        head: text(chain.first.span).trim().to_string(),
     });
 }
 
@@ -884,8 +881,12 @@ fn verdict_on(checked: &FileReport, p: &Placed) -> ChainReport {
         using: Vec::new(),
     };
     if let Some((s, mut d)) = rest {
+        later::imposed_or_false(p, &mut d);
         if d.iter().any(refuted) {
-            if d.iter().any(|x| refuted(x) && later_is_a_mistake(p, x)) {
+            let mistake = |x: &Diagnostic| {
+                later_is_a_mistake(p, x) || later_link(p, x).is_some_and(|l| l.skipped)
+            };
+            if d.iter().any(|x| refuted(x) && mistake(x)) {
                 return report(Verdict::Failed, d);
             }
             for x in d.iter_mut().filter(|x| refuted(x)) {
@@ -939,63 +940,6 @@ fn verdict_on(checked: &FileReport, p: &Placed) -> ChainReport {
     report(Verdict::NeedsContext, first_diags)
 }
 
-/// The later link a diagnostic is about.
-fn later_link<'a>(p: &'a Placed, d: &Diagnostic) -> Option<&'a Later> {
-    let at = d.primary.as_ref()?.0.start;
-    p.later
-        .iter()
-        .find(|l| at >= l.span.start && at < l.span.end)
-}
 
-/// Whether a later link that does not hold is a mistake rather than something the
-/// notes take from prose: every symbol of the chain up to it is one the document
-/// declared or defined; or it brings in nothing new and fails as algebra, without the
-/// relations the notes stated before (a step that contradicts only those states
-/// something new: `N - m g cos(beta) = m y'' = 0`).
-fn later_is_a_mistake(p: &Placed, d: &Diagnostic) -> bool {
-    let Some(link) = later_link(p, d) else {
-        return true;
-    };
-    link.firm || (link.fresh.is_empty() && !d.message.cites_facts())
-}
 
-/// Why a later link that does not hold needs context.
-fn later_needs(p: &Placed, d: &Diagnostic) -> String {
-    match later_link(p, d) {
-        Some(l) if !l.fresh.is_empty() => format!(
-            "needs context: this step brings in {}, which nothing before it defines; the notes must give {}",
-            l.fresh.join(", "),
-            if l.fresh.len() == 1 { "it" } else { "them" }
-        ),
-        _ => "needs context: this step does not follow from the relations before it; it states something new, which the notes must justify".into(),
-    }
-}
 
-/// The links after the first, each with the symbols it brings in (`names`: those of
-/// the links before, extended with its own). A later link that brings in a symbol
-/// nothing before it in the scope used relies on something the notes say in prose
-/// (`dA = 2 pi r dr`), not on the algebra.
-fn later_links(
-    chain: &Chain,
-    names: &mut Vec<String>,
-    seen: &HashSet<String>,
-    is_known: &dyn Fn(&String) -> bool,
-) -> Vec<Later> {
-    let mut later = Vec::new();
-    for (prev, l) in chain.links.iter().zip(chain.links.iter().skip(1)) {
-        let before = names.len();
-        free(&l.rhs, &mut Vec::new(), names);
-        let fresh: Vec<String> = names[before..]
-            .iter()
-            .filter(|n| !seen.contains(n.trim_end_matches('\'')) && !is_known(n))
-            .cloned()
-            .collect();
-        later.push(Later {
-            span: Span::new(prev.rhs.span.start, l.span.end),
-            rhs: l.rhs.span.start,
-            fresh,
-            firm: names.iter().all(is_known),
-        });
-    }
-    later
-}

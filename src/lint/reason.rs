@@ -59,7 +59,7 @@ pub(super) fn of(checked: &FileReport, p: &Placed, diags: &[Diagnostic]) -> Reas
     };
     if p.unwritten {
         Reason::Unchecked
-    } else if p.imposed {
+    } else if p.imposed || diags.iter().any(|d| super::later::imposes(p, d)) {
         Reason::Imposed
     } else if p.contradicts {
         Reason::Contradiction

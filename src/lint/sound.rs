@@ -17,11 +17,16 @@ use crate::syntax::ast::{ExprKind, Span};
 
 /// Whether the relation stated by the statement taken from the link at `link` (its
 /// start in the document), with everything stated before it, forces its right side
-/// `rhs` to zero: then it could hold only where both its sides vanish, which
-/// contradicts what was stated before for the values notes mean (`a = g\sin\beta/2`,
-/// then `a = g\sin\beta/3`, force `g \sin\beta = 0`). A right side that is a number
-/// is never forced to zero by a relation that holds.
-fn forces_zero(b: &Build<'_>, (link, rhs): (usize, Span), (name, doc): (&str, &str), opts: &Options) -> bool {
+/// `rhs` to zero where what was stated before it does not: then it could hold only
+/// where both its sides vanish, which contradicts what was stated before for the values
+/// notes mean (`a = g\sin\beta/2`, then `a = g\sin\beta/3`, force `g \sin\beta = 0`).
+/// A right side that is a number is never forced to zero by a relation that holds.
+fn forces_zero(
+    b: &Build<'_>,
+    (link, rhs): (usize, Span),
+    (name, doc): (&str, &str),
+    opts: &Options,
+) -> bool {
     let text = super::flat(doc, rhs);
     let popts = crate::syntax::ParseOptions {
         max_depth: opts.parse.max_depth,
@@ -36,27 +41,30 @@ fn forces_zero(b: &Build<'_>, (link, rhs): (usize, Span), (name, doc): (&str, &s
     let (Some(part), true) = (part, symbolic) else {
         return false;
     };
-    let Some(end) = part.last().map(|x| x.0).and_then(|at| {
-        b.deriv
-            .get(at..)
-            .and_then(|r| r.find('\n'))
-            .map(|k| at + k + 1)
-    }) else {
+    let stmt = format!("claim $$ {text} = 0 $$\n");
+    let line = |at: usize| {
+        let start = b.deriv.get(..at)?.rfind('\n').map_or(0, |k| k + 1);
+        let end = at + b.deriv.get(at..)?.find('\n')? + 1;
+        Some((start, end))
+    };
+    let Some((start, end)) = part.first().and_then(|x| line(x.0)) else {
         return false;
     };
-    let mut deriv = b.deriv.get(..end).unwrap_or_default().to_string();
-    let stmt = format!("claim $$ {text} = 0 $$\n");
     if !b.cache.parses(&stmt) {
         return false;
     }
-    let at = deriv.len();
-    deriv.push_str(&stmt);
-    let report = b.cache.report(name, &deriv, opts);
-    report
-        .claims
-        .iter()
-        .find(|c| c.span.start >= at)
-        .is_some_and(|c| !c.links.is_empty() && c.links.iter().all(|l| l.status.is_verified()))
+    let zero_after = |upto: usize| {
+        let mut deriv = b.deriv.get(..upto).unwrap_or_default().to_string();
+        let at = deriv.len();
+        deriv.push_str(&stmt);
+        let report = b.cache.report(name, &deriv, opts);
+        report
+            .claims
+            .iter()
+            .find(|c| c.span.start >= at)
+            .is_some_and(|c| !c.links.is_empty() && c.links.iter().all(|l| l.status.is_verified()))
+    };
+    zero_after(end) && !zero_after(start)
 }
 
 /// The links (their starts in the document) whose stated relations must not be
@@ -82,12 +90,20 @@ pub(super) fn unfit(
         }
         if let Some(rest) = &p.rest {
             let (_, diags) = part_outcome(checked, rest, p.span);
-            for d in diags.iter().filter(|d| refuted(d)) {
+            for d in &diags {
                 let Some(l) = later_link(p, d) else {
                     continue;
                 };
+                // A link `= 0` imposes a condition: a premise, whatever it reads.
+                if l.zero && !l.firm {
+                    continue;
+                }
+                let open = refuted(d) || (d.code == Code::NotVerified && l.fresh.is_empty());
                 let rhs = Span::new(l.rhs, l.span.end);
-                if later_is_a_mistake(p, d) || forces_zero(b, (l.span.start, rhs), (name, doc), opts) {
+                if open
+                    && ((refuted(d) && later_is_a_mistake(p, d))
+                        || forces_zero(b, (l.span.start, rhs), (name, doc), opts))
+                {
                     out.push(l.span.start);
                 }
             }
