@@ -15,6 +15,7 @@ mod premises;
 mod reader;
 mod reason;
 mod sound;
+mod values;
 
 use crate::check::{check_source, FileReport, MemoryResolver, Options, Status};
 use crate::diag::{Diagnostic, LineIndex};
@@ -146,6 +147,9 @@ struct Scope {
     /// The definitions of earlier sections (`I_G = \frac{m L^2}{12}`), each a chain of
     /// one link: in scope here unless the scope states its symbol again.
     carried: Vec<Chain>,
+    /// The values the section's prose gives lone symbols (`where $r = A$`), each as
+    /// rigor writes it (`r`, `A`).
+    values: Vec<(String, String)>,
 }
 
 enum Item {
@@ -243,6 +247,7 @@ impl Scope {
             items: Vec::new(),
             quiet: HashSet::new(),
             carried: Vec::new(),
+            values: Vec::new(),
         }
     }
 
@@ -250,8 +255,20 @@ impl Scope {
     fn build<'a>(
         &self,
         doc: &str,
+        sets: (&'a HashSet<String>, &'a HashSet<String>, &'a HashSet<usize>),
+        cache: &'a Checked,
+    ) -> Build<'a> {
+        self.build_with(doc, sets, cache, None)
+    }
+
+    /// The derivation made from the scope, with `extra` (a `rigor:` statement and the
+    /// names it declares) after the document's statements.
+    fn build_with<'a>(
+        &self,
+        doc: &str,
         (time, solve, skip): (&'a HashSet<String>, &'a HashSet<String>, &'a HashSet<usize>),
         cache: &'a Checked,
+        extra: Option<&(String, Vec<String>)>,
     ) -> Build<'a> {
         let mut b = Build {
             deriv: self.directives.clone(),
@@ -266,6 +283,12 @@ impl Scope {
             skip,
             carried: Vec::new(),
         };
+        if let Some((text, names)) = extra {
+            b.deriv.push_str(text);
+            b.deriv.push('\n');
+            b.declared.extend(names.iter().cloned());
+            b.known.extend(names.iter().cloned());
+        }
         carry::place_carried(self, doc, &mut b);
         for item in &self.items {
             match item {
@@ -353,7 +376,10 @@ impl Scope {
                 sound::distrust(&b, &checked, (name, doc), (opts, cache), out);
                 return;
             }
+            let start = out.len();
             report_all(&b, &checked, (name, doc), (opts, cache), out);
+            let sets = (&time, &solve, &skip);
+            values::suggest(self, (&b, sets), (name, doc.text()), (opts, cache), &mut out[start..]);
             return;
         }
     }

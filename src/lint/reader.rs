@@ -103,6 +103,7 @@ impl<'a> Reader<'a> {
     }
 
     fn directive(&mut self, text: String) {
+        let text = super::values::declaring(&text, &self.names).unwrap_or(text);
         // `small theta` marks a symbol declared elsewhere: declared here when it is not.
         let text = match text.strip_prefix("small ") {
             Some(rest) => {
@@ -188,6 +189,13 @@ impl<'a> Reader<'a> {
                         .filter(|c| c.verdict != Verdict::NeedsContext),
                 );
                 if let Some(c) = &rest {
+                    // A value the prose gives a lone symbol, wherever in the section:
+                    // the comment that would make a chain checkable, where it does.
+                    if let (ExprKind::Sym(n), [l]) = (&c.first.kind, c.links.as_slice()) {
+                        if l.op == RelOp::Eq {
+                            self.scope.values.push((n.clone(), source(&l.rhs)));
+                        }
+                    }
                     // `$\mu = 0$`, `$h = 2$`: a case or a value the sentence sets.
                     let value = matches!(c.first.kind, ExprKind::Sym(_))
                         && c.links.iter().all(|l| !has_symbols(&l.rhs));

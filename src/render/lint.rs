@@ -34,6 +34,16 @@ fn rests_on(from: &[usize], using: &[(String, usize)]) -> String {
     out
 }
 
+/// A `rigor:` statement as a comment of the document's kind: `% rigor: …` in LaTeX,
+/// `<!-- rigor: … -->` in Markdown.
+fn comment_in(path: &str, k: &str) -> String {
+    if path.ends_with(".tex") {
+        format!("% {k}")
+    } else {
+        format!("<!-- {k} -->")
+    }
+}
+
 /// The human report: (standard output, standard error).
 pub fn human(r: &LintReport) -> (String, String) {
     let (mut out, mut err) = (String::new(), String::new());
@@ -70,7 +80,18 @@ pub fn human(r: &LintReport) -> (String, String) {
                 c.defines.as_deref().unwrap_or("a new symbol")
             )),
             Verdict::NeedsContext => {
-                out.push_str(&format!("{}:{line}:{col}: needs context{why}\n", r.path))
+                // The comment that makes it checkable, as the document writes comments.
+                let add = c
+                    .comment
+                    .as_ref()
+                    .filter(|k| !why.contains(k.as_str()))
+                    .map_or(String::new(), |k| {
+                        format!("; `{}` makes it checkable", comment_in(&r.path, k))
+                    });
+                out.push_str(&format!(
+                    "{}:{line}:{col}: needs context{why}{add}\n",
+                    r.path
+                ))
             }
             Verdict::Failed => {
                 out.push_str(&format!("{}:{line}:{col}: FAILED{why}\n", r.path));
