@@ -1,6 +1,6 @@
-//! Definitions that outlive their section. A chain whose left side is a lone symbol
-//! new to its section (`I_G = \frac{m L^2}{12}`) defines it; later sections may use
-//! the symbol without stating it again (`I_O = I_G + m (L/2)^2 = \frac{m L^2}{3}`
+//! Results that outlive their section. A relation whose left side is a lone symbol
+//! (`I_G = \frac{m L^2}{12}`, or the prose's `v_G = \omega R`) states what the symbol
+//! stands for; later sections may use the symbol without stating it again (`I_O = I_G + m (L/2)^2 = \frac{m L^2}{3}`
 //! under the next heading), so the definition is in scope there — unless that section
 //! states the symbol again, or one of the symbols the definition is written in (the
 //! letter reused). A chain verified with it says so: `using I_G = … from line 8`.
@@ -18,31 +18,31 @@ fn stated_symbol(c: &Chain) -> Option<&str> {
     }
 }
 
-/// Adds to `carried` the definitions `scope` leaves to the sections after it: each
-/// chain whose left side is a symbol nothing before it in the scope used, as a chain of
-/// its first link. A later definition of the same symbol replaces an earlier one.
+/// Adds to `carried` the results `scope` leaves to the sections after it: each chain
+/// whose left side is a lone symbol its first link's right side does not use, as a
+/// chain of that link. A later section's relation for the same symbol replaces an
+/// earlier section's.
 pub(super) fn left_by(scope: &Scope, carried: &mut Vec<Chain>) {
-    let mut seen: HashSet<String> = scope.names.clone();
+    // Within a section, the first relation for a symbol is what it stands for (`I_G =
+    // \frac12 m R^2`, then `I_G = m k^2` defines `k`).
+    let mut stated = HashSet::new();
     for item in &scope.items {
-        match item {
-            Item::Directive(_, names) => seen.extend(names.iter().cloned()),
-            Item::Chain(c) | Item::Imposed(c) => {
-                let fresh = matches!(item, Item::Chain(_))
-                    && stated_symbol(c).is_some_and(|n| !seen.contains(n));
-                if let (true, Some(n), Some(l)) = (fresh, stated_symbol(c), c.links.first()) {
-                    carried.retain(|d| stated_symbol(d) != Some(n));
-                    carried.push(Chain {
-                        first: c.first.clone(),
-                        links: vec![l.clone()],
-                    });
-                }
-                let mut names = Vec::new();
-                for e in c.exprs() {
-                    free(e, &mut Vec::new(), &mut names);
-                }
-                seen.extend(names.iter().map(|n| n.trim_end_matches('\'').to_string()));
-            }
+        let Item::Chain(c) = item else {
+            continue;
+        };
+        let (Some(n), Some(l)) = (stated_symbol(c), c.links.first()) else {
+            continue;
+        };
+        let mut rhs = Vec::new();
+        free(&l.rhs, &mut Vec::new(), &mut rhs);
+        if rhs.iter().any(|r| r.trim_end_matches('\'') == n) || !stated.insert(n.to_string()) {
+            continue;
         }
+        carried.retain(|d| stated_symbol(d) != Some(n));
+        carried.push(Chain {
+            first: c.first.clone(),
+            links: vec![l.clone()],
+        });
     }
 }
 

@@ -147,8 +147,8 @@ struct Scope {
     /// The definitions of earlier sections (`I_G = \frac{m L^2}{12}`), each a chain of
     /// one link: in scope here unless the scope states its symbol again.
     carried: Vec<Chain>,
-    /// The values the section's prose gives lone symbols (`where $r = A$`), each as
-    /// rigor writes it (`r`, `A`).
+    /// The values the section's prose gives lone symbols (`where $r = A$`): the symbol,
+    /// and the relation as a `let` comment writes it (`r = A`, or `$$ r = \frac{L}{2} $$`).
     values: Vec<(String, String)>,
 }
 
@@ -570,7 +570,7 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
             } else {
                 write(kw, &first_link, deriv)
             };
-            (claim, matches!(chain.first.kind, ExprKind::Sym(_)))
+            (claim, lone(&chain.first))
         }
     };
     let rest = rest_span.and_then(|r| write("claim", &[link0.rhs.span, r], deriv));
@@ -610,6 +610,18 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         givens,
         head: text(chain.first.span).trim().to_string(),
     });
+}
+
+/// Whether `e` is a lone symbol or a power of one (`\omega^2 = \frac{g}{L}` states what
+/// `\omega` is, as `T = 2\pi/\omega` states `T`).
+fn lone(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Sym(_) => true,
+        ExprKind::Bin(crate::syntax::ast::BinOp::Pow, base, exp) => {
+            matches!(base.kind, ExprKind::Sym(_)) && matches!(exp.kind, ExprKind::Num(_))
+        }
+        _ => false,
+    }
 }
 
 /// The text of `s` in the document on one line: a link may run over several rows of a

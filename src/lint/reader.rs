@@ -193,7 +193,13 @@ impl<'a> Reader<'a> {
                     // the comment that would make a chain checkable, where it does.
                     if let (ExprKind::Sym(n), [l]) = (&c.first.kind, c.links.as_slice()) {
                         if l.op == RelOp::Eq {
-                            self.scope.values.push((n.clone(), source(&l.rhs)));
+                            let plain = source(&l.rhs);
+                            let value = if plain.contains('(') {
+                                format!("$$ {n} = {} $$", self.flat(l.rhs.span))
+                            } else {
+                                format!("{n} = {plain}")
+                            };
+                            self.scope.values.push((n.clone(), value));
                         }
                     }
                     // `$\mu = 0$`, `$h = 2$`: a case or a value the sentence sets.
@@ -224,6 +230,11 @@ impl<'a> Reader<'a> {
                 self.scope.items.extend(rest.map(item));
             }
         }
+    }
+
+    /// The document's text in `s`, on one line.
+    fn flat(&self, s: Span) -> String {
+        super::flat(&self.cleaned, s).trim().to_string()
     }
 
     /// A lone symbol given a value different from the one it was given before under

@@ -53,18 +53,29 @@ fn forces_zero(
     if !b.cache.parses(&stmt) {
         return false;
     }
-    let zero_after = |upto: usize| {
-        let mut deriv = b.deriv.get(..upto).unwrap_or_default().to_string();
-        let at = deriv.len();
-        deriv.push_str(&stmt);
+    // The symbols the linter declared are taken nonzero, as notes mean them: a
+    // relation that forces `m g \sin\beta` to zero is then seen to force `\sin\beta`
+    // to zero (or contradicts the signs), with no division left in doubt.
+    let nonzero = |upto: usize| super::premises::nonzero(b.deriv.get(..upto).unwrap_or_default());
+    let (before, with) = (nonzero(start), nonzero(end));
+    let zero_after = |prefix: &str| {
+        let deriv = format!("{prefix}{stmt}");
         let report = b.cache.report(name, &deriv, opts);
-        report
+        let claimed = report
             .claims
             .iter()
-            .find(|c| c.span.start >= at)
-            .is_some_and(|c| !c.links.is_empty() && c.links.iter().all(|l| l.status.is_verified()))
+            .find(|c| c.span.start >= prefix.len())
+            .is_some_and(|c| !c.links.is_empty() && c.links.iter().all(|l| l.status.is_verified()));
+        let contradicts = report.diagnostics.iter().any(|d| {
+            d.code == Code::FalseFacts
+                && d.primary
+                    .as_ref()
+                    .is_some_and(|(s, _)| s.start >= before.len() && s.start < prefix.len())
+        });
+        (claimed, contradicts)
     };
-    zero_after(end) && !zero_after(start)
+    let (zero, contradicts) = zero_after(&with);
+    (zero || contradicts) && !zero_after(&before).0
 }
 
 /// The links (their starts in the document) whose stated relations must not be
@@ -79,7 +90,8 @@ pub(super) fn unfit(
     let mut out = Vec::new();
     for p in &b.placed {
         if let Some(first) = &p.first {
-            let (_, diags) = part_outcome(checked, first, p.span);
+            let (_, mut diags) = part_outcome(checked, first, p.span);
+            super::premises::loosen(&mut diags, &p.loose);
             let rhs = Span::new(p.first_link.start, p.first_link.end);
             if p.stated.is_some()
                 && diags.iter().any(refuted)
@@ -89,7 +101,8 @@ pub(super) fn unfit(
             }
         }
         if let Some(rest) = &p.rest {
-            let (_, diags) = part_outcome(checked, rest, p.span);
+            let (_, mut diags) = part_outcome(checked, rest, p.span);
+            super::premises::loosen(&mut diags, &p.loose);
             for d in &diags {
                 let Some(l) = later_link(p, d) else {
                     continue;

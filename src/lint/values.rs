@@ -16,21 +16,35 @@ use std::collections::HashSet;
 /// it needs nothing declared or is not such a comment.
 pub(super) fn declaring(text: &str, names: &HashSet<String>) -> Option<String> {
     let (kw, rest) = text.split_once(' ')?;
-    if (kw != "let" && kw != "given") || rest.contains("$$") {
+    if kw != "let" && kw != "given" {
         return None;
     }
-    let (lhs, rhs) = rest.split_once('=')?;
-    let mut used = Vec::new();
-    for side in [lhs, rhs] {
-        let e = parse_expr(side.trim(), &ParseOptions::default()).ok()?;
-        free(&e, &mut Vec::new(), &mut used);
-    }
+    let used = used_names(rest)?;
+    let lhs = rest.trim().trim_start_matches("$$").split('=').next()?;
     let defined = (kw == "let").then(|| lhs.trim());
     let new: Vec<String> = used
         .into_iter()
         .filter(|n| !names.contains(n) && Some(n.as_str()) != defined && !n.ends_with('\''))
         .collect();
     (!new.is_empty()).then(|| format!("symbols {}\n{text}", new.join(" ")))
+}
+
+/// The names a relation in rigor's syntax or between `$$` uses, left side first.
+fn used_names(relation: &str) -> Option<Vec<String>> {
+    let latex = relation.trim().starts_with("$$");
+    let relation = relation.trim().trim_start_matches("$$").trim_end_matches("$$");
+    let (lhs, rhs) = relation.split_once('=')?;
+    let mut used = Vec::new();
+    for side in [lhs, rhs] {
+        let e = if latex {
+            crate::syntax::latex::parse_latex_expr(side.trim(), 0, &ParseOptions::default())
+                .ok()?
+        } else {
+            parse_expr(side.trim(), &ParseOptions::default()).ok()?
+        };
+        free(&e, &mut Vec::new(), &mut used);
+    }
+    Some(used)
 }
 
 /// The needs-context reasons a value from the prose may settle.
@@ -76,19 +90,13 @@ pub(super) fn suggest(
             .iter()
             .filter(|(n, _)| uses(n) && !scope.names.contains(n))
             .take(3);
-        for (n, v) in candidates {
-            let stmt = format!("let {n} = {v}");
+        for (_, v) in candidates {
+            let stmt = format!("let {v}");
             let text = declaring(&stmt, &scope.names).unwrap_or_else(|| stmt.clone());
             if !cache.parses(&text) {
                 continue;
             }
-            let mut words = Vec::new();
-            for side in [n.as_str(), v.as_str()] {
-                if let Ok(e) = parse_expr(side, &ParseOptions::default()) {
-                    free(&e, &mut Vec::new(), &mut words);
-                }
-            }
-            let extra = (text, words);
+            let extra = (text, used_names(v).unwrap_or_default());
             let again = scope.build_with(doc, sets, cache, Some(&extra));
             let Some(q) = again.placed.get(i) else {
                 continue;
