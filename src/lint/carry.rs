@@ -55,6 +55,10 @@ pub(super) fn place_carried(scope: &Scope, doc: &str, b: &mut Build<'_>) {
     let mut restated = HashSet::new();
     let mut mentioned = Vec::new();
     for item in &scope.items {
+        // A symbol the section declares in a comment is that section's own.
+        if let Item::Directive(_, names) = item {
+            restated.extend(names.iter().cloned());
+        }
         if let Item::Chain(c) | Item::Imposed(c) = item {
             restated.extend(stated_symbol(c).map(String::from));
             for e in c.exprs() {
@@ -82,6 +86,10 @@ pub(super) fn place_carried(scope: &Scope, doc: &str, b: &mut Build<'_>) {
         {
             continue;
         }
+        // The symbols it is written in are the scope's from here on, as if a chain had
+        // used them (a step that brings in `m` and `L` with `I_O` brings in nothing new).
+        b.seen
+            .extend(names.iter().map(|x| x.trim_end_matches('\'').to_string()));
         declare(names, None, &mut b.deriv, &mut b.declared, (b.time, b.solve));
         let pieces = [c.first.span, link.span];
         if write_statement("let", &pieces, (doc, b.cache), &mut b.deriv).is_some() {

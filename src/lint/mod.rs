@@ -236,6 +236,8 @@ struct Build<'a> {
     /// The definitions of earlier sections written into this derivation: name, the
     /// definition as the notes write it, and where it starts in the document.
     carried: Vec<(String, String, usize)>,
+    /// Whether the definitions of earlier sections are written in.
+    carry: bool,
 }
 
 impl Scope {
@@ -257,8 +259,9 @@ impl Scope {
         doc: &str,
         sets: (&'a HashSet<String>, &'a HashSet<String>, &'a HashSet<usize>),
         cache: &'a Checked,
+        carry: bool,
     ) -> Build<'a> {
-        self.build_with(doc, sets, cache, None)
+        self.build_with(doc, sets, (cache, carry), None)
     }
 
     /// The derivation made from the scope, with `extra` (a `rigor:` statement and the
@@ -267,7 +270,7 @@ impl Scope {
         &self,
         doc: &str,
         (time, solve, skip): (&'a HashSet<String>, &'a HashSet<String>, &'a HashSet<usize>),
-        cache: &'a Checked,
+        (cache, carry): (&'a Checked, bool),
         extra: Option<&(String, Vec<String>)>,
     ) -> Build<'a> {
         let mut b = Build {
@@ -282,6 +285,7 @@ impl Scope {
             imposing: false,
             skip,
             carried: Vec::new(),
+            carry,
         };
         if let Some((text, names)) = extra {
             b.deriv.push_str(text);
@@ -289,7 +293,9 @@ impl Scope {
             b.declared.extend(names.iter().cloned());
             b.known.extend(names.iter().cloned());
         }
-        carry::place_carried(self, doc, &mut b);
+        if b.carry {
+            carry::place_carried(self, doc, &mut b);
+        }
         for item in &self.items {
             match item {
                 Item::Directive(text, names) => {
@@ -309,15 +315,53 @@ impl Scope {
         b
     }
 
+    /// Checks the scope and gives each chain its verdict (`close_with`); then, when it
+    /// has results of earlier sections and chains that need context, checks it again
+    /// with those results written in (`carry.rs`): a chain not verified without them
+    /// that is verified with them, and one that needs context without them and fails
+    /// with them, takes that verdict. A chain that holds as the section writes it (a
+    /// letter reused: `I_G` of another body, used as any) keeps its own.
+    fn close(
+        &self,
+        (name, doc): (&str, &LineIndex<'_>),
+        (opts, cache): (&Options, &Checked),
+        out: &mut Vec<ChainReport>,
+    ) {
+        let mut base = Vec::new();
+        self.close_with((name, doc), (opts, cache), false, &mut base);
+        let open = |r: &ChainReport| matches!(r.verdict, Verdict::NeedsContext | Verdict::Failed);
+        if self.carried.is_empty() || !base.iter().any(open) {
+            out.extend(base);
+            return;
+        }
+        let mut with = Vec::new();
+        self.close_with((name, doc), (opts, cache), true, &mut with);
+        for r in base {
+            // Verified with them, or (needing context without them) failed with them.
+            let settled = open(&r)
+                .then(|| {
+                    with.iter().find(|w| {
+                        w.span == r.span
+                            && (w.verdict == Verdict::Verified
+                                || (w.verdict == Verdict::Failed
+                                    && r.verdict == Verdict::NeedsContext))
+                    })
+                })
+                .flatten();
+            out.push(settled.cloned().unwrap_or(r));
+        }
+    }
+
     /// Checks the scope's derivation and gives each chain its verdict. A name the
     /// linter assumed (no `rigor:` comment declares it) that the facts determine is
     /// then declared with `unknowns` and the scope checked again: in notes, letters are
     /// not declared as given quantities, so `N` found from `N - m g cos(beta) = 0` is
     /// solved for, not held fixed.
-    fn close(
+    fn close_with(
         &self,
         (name, doc): (&str, &LineIndex<'_>),
         (opts, cache): (&Options, &Checked),
+        carry: bool,
         out: &mut Vec<ChainReport>,
     ) {
         let mut time = HashSet::new();
@@ -342,7 +386,7 @@ impl Scope {
         let mut solve = HashSet::new();
         let mut skip = HashSet::new();
         for round in 0..ROUNDS {
-            let b = self.build(doc.text(), (&time, &solve, &skip), cache);
+            let b = self.build(doc.text(), (&time, &solve, &skip), cache, carry);
             if b.placed.is_empty() {
                 return;
             }

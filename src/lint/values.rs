@@ -97,7 +97,7 @@ pub(super) fn suggest(
                 continue;
             }
             let extra = (text, used_names(v).unwrap_or_default());
-            let again = scope.build_with(doc, sets, cache, Some(&extra));
+            let again = scope.build_with(doc, sets, (cache, b.carry), Some(&extra));
             let Some(q) = again.placed.get(i) else {
                 continue;
             };
