@@ -5,7 +5,10 @@
 //! states the symbol again, or one of the symbols the definition is written in (the
 //! letter reused). A chain verified with it says so: `using I_G = … from line 8`.
 
-use super::{declare, first_link_names, flat, free, write_statement, Build, Item, Scope};
+use super::{
+    declare, first_link_names, flat, free, write_statement, Build, ChainReport, Item, Scope,
+    Verdict,
+};
 use crate::syntax::ast::{Chain, ExprKind, RelOp};
 use std::collections::HashSet;
 
@@ -71,10 +74,7 @@ pub(super) fn place_carried(scope: &Scope, doc: &str, b: &mut Build<'_>) {
         let (Some(n), Some(link)) = (stated_symbol(c), c.links.first()) else {
             continue;
         };
-        let names: Vec<String> = first_link_names(c)
-            .into_iter()
-            .filter(|x| x != n)
-            .collect();
+        let names: Vec<String> = first_link_names(c).into_iter().filter(|x| x != n).collect();
         let reused = names
             .iter()
             .any(|x| restated.contains(x.trim_end_matches('\'')));
@@ -90,7 +90,13 @@ pub(super) fn place_carried(scope: &Scope, doc: &str, b: &mut Build<'_>) {
         // used them (a step that brings in `m` and `L` with `I_O` brings in nothing new).
         b.seen
             .extend(names.iter().map(|x| x.trim_end_matches('\'').to_string()));
-        declare(names, None, &mut b.deriv, &mut b.declared, (b.time, b.solve));
+        declare(
+            names,
+            None,
+            &mut b.deriv,
+            &mut b.declared,
+            (b.time, b.solve),
+        );
         let pieces = [c.first.span, link.span];
         if write_statement("let", &pieces, (doc, b.cache), &mut b.deriv).is_some() {
             b.declared.insert(n.to_string());
@@ -99,5 +105,20 @@ pub(super) fn place_carried(scope: &Scope, doc: &str, b: &mut Build<'_>) {
             b.carried
                 .push((n.to_string(), text.trim().to_string(), c.first.span.start));
         }
+    }
+}
+
+/// The verdicts of a section's chains: each as checked without the results of earlier
+/// sections (`base`), unless it was not verified and is verified with them (`with`), or
+/// needed context and fails with them.
+pub(super) fn settle(base: Vec<ChainReport>, with: &[ChainReport], out: &mut Vec<ChainReport>) {
+    for r in base {
+        let open = matches!(r.verdict, Verdict::NeedsContext | Verdict::Failed);
+        let settled = with.iter().find(|w| {
+            open && w.span == r.span
+                && (w.verdict == Verdict::Verified
+                    || (w.verdict == Verdict::Failed && r.verdict == Verdict::NeedsContext))
+        });
+        out.push(settled.cloned().unwrap_or(r));
     }
 }

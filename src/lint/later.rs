@@ -4,8 +4,8 @@
 
 use super::{free, Placed};
 use crate::diag::{Code, Diagnostic};
-use num_traits::Zero;
 use crate::syntax::ast::{Chain, ExprKind, Span};
+use num_traits::Zero;
 use std::collections::HashSet;
 
 /// A link after the first of a chain.

@@ -5,8 +5,8 @@
 //! say), a chain whose left side is a lone new symbol defining it for later chains.
 
 use crate::diag::{Code, Mistake};
-mod display;
 mod carry;
+mod display;
 mod extract;
 mod later;
 mod mass;
@@ -23,7 +23,7 @@ use crate::syntax::ast::{Chain, Expr, ExprKind, Func, Reading, Span};
 use crate::syntax::ParseOptions;
 pub use extract::{pieces, DocKind, Piece};
 use later::{later_is_a_mistake, later_link, later_links, later_needs, Later};
-use partial::{conditions, once, verified_head, verified_tail};
+use partial::{conditions, once, report_all};
 pub use reason::Reason;
 use std::collections::{HashMap, HashSet};
 use std::sync::{Arc, Mutex};
@@ -336,20 +336,7 @@ impl Scope {
         }
         let mut with = Vec::new();
         self.close_with((name, doc), (opts, cache), true, &mut with);
-        for r in base {
-            // Verified with them, or (needing context without them) failed with them.
-            let settled = open(&r)
-                .then(|| {
-                    with.iter().find(|w| {
-                        w.span == r.span
-                            && (w.verdict == Verdict::Verified
-                                || (w.verdict == Verdict::Failed
-                                    && r.verdict == Verdict::NeedsContext))
-                    })
-                })
-                .flatten();
-            out.push(settled.cloned().unwrap_or(r));
-        }
+        carry::settle(base, &with, out);
     }
 
     /// Checks the scope's derivation and gives each chain its verdict. A name the
@@ -423,55 +410,25 @@ impl Scope {
             let start = out.len();
             report_all(&b, &checked, (name, doc), (opts, cache), out);
             let sets = (&time, &solve, &skip);
-            values::suggest(self, (&b, sets), (name, doc.text()), (opts, cache), &mut out[start..]);
+            values::suggest(
+                self,
+                (&b, sets),
+                (name, doc.text()),
+                (opts, cache),
+                &mut out[start..],
+            );
             return;
         }
     }
 }
 
-/// Each chain of a scope's derivation with its verdict, in document terms.
-fn report_all(
-    b: &Build<'_>,
-    checked: &FileReport,
-    (name, doc): (&str, &LineIndex<'_>),
-    (opts, cache): (&Options, &Checked),
-    out: &mut Vec<ChainReport>,
-) {
-            // A failure that positive values of the symbols the linter declared
-            // would remove is a sign the notes do not state, not a slip.
-            let positive = b
-                .placed
-                .iter()
-                .any(|p| verdict(&checked, p).verdict == Verdict::Failed)
-                .then(|| premises::positive(&b.deriv))
-                .map(|(deriv, names)| (cache.report(name, &deriv, opts), names));
-            for p in &b.placed {
-                let mut report = verdict(&checked, p);
-                if let Some((again, names)) = &positive {
-                    premises::unsigned(&mut report, verdict(again, p), (&p.symbols, names));
-                }
-                for d in &mut report.diagnostics {
-                    document_lines(d, &b.deriv, &b.placed, doc);
-                }
-                let needs = report.verdict == Verdict::NeedsContext;
-                let tail = needs.then(|| verified_tail(&checked, p)).flatten();
-                // A verified head is reported on its own; the rest of the chain,
-                // from the head's last expression, is what needs context.
-                if let Some((head, from)) = needs.then(|| verified_head(&checked, p)).flatten()
-                {
-                    report.span = Span::new(from, report.span.end);
-                    out.push(head);
-                }
-                sound::premises_of(&mut report, (checked, p), (b, doc));
-                out.push(report);
-                out.extend(tail);
-            }
-}
+/// The sets a scope's derivation is built with: names written with a derivative, names
+/// to solve for, links not taken as stated.
+type Sets<'a> = (&'a HashSet<String>, &'a HashSet<String>, &'a HashSet<usize>);
 
 /// How many times a scope is checked at most (with names to solve for, then without
 /// the stated relations that do not fit).
 const ROUNDS: usize = 6;
-
 
 /// Checks the chains of `doc`. Each heading starts a new scope: notes reuse letters
 /// from one section to the next (R a radius, then a reaction), so what one section
@@ -884,6 +841,26 @@ fn refuted(d: &Diagnostic) -> bool {
     )
 }
 
+/// The report of a chain that could not be written as a derivation.
+fn unwritten(p: &Placed) -> ChainReport {
+    ChainReport {
+        span: p.span,
+        verdict: Verdict::NeedsContext,
+        diagnostics: vec![Diagnostic::error(
+            Code::NotVerified,
+            "needs context: rigor reads this chain but cannot write it as a derivation, so it is not checked",
+            p.span,
+            "",
+        )],
+        assuming: Vec::new(),
+        defines: None,
+        reason: None,
+        comment: None,
+        from: Vec::new(),
+        using: Vec::new(),
+    }
+}
+
 /// The verdict on a placed chain, and for one that needs context, why.
 fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
     let mut report = verdict_on(checked, p);
@@ -902,22 +879,7 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
 /// first link must hold on its own, or state a relation for a lone symbol.
 fn verdict_on(checked: &FileReport, p: &Placed) -> ChainReport {
     if p.unwritten {
-        return ChainReport {
-            span: p.span,
-            verdict: Verdict::NeedsContext,
-            diagnostics: vec![Diagnostic::error(
-                Code::NotVerified,
-                "needs context: rigor reads this chain but cannot write it as a derivation, so it is not checked",
-                p.span,
-                "",
-            )],
-            assuming: Vec::new(),
-            defines: None,
-            reason: None,
-            comment: None,
-            from: Vec::new(),
-            using: Vec::new(),
-        };
+        return unwritten(p);
     }
     let holds = |s: &[Status]| !s.is_empty() && s.iter().all(Status::is_verified);
     let (first_statuses, mut first_diags) = match &p.first {
@@ -1021,7 +983,3 @@ fn verdict_on(checked: &FileReport, p: &Placed) -> ChainReport {
     }
     report(Verdict::NeedsContext, first_diags)
 }
-
-
-
-

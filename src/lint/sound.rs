@@ -8,8 +8,8 @@
 //! the definitions of earlier sections it used.
 
 use super::{
-    doc_line, later_is_a_mistake, later_link, part_outcome, refuted, report_all, Build,
-    ChainReport, Checked, Placed, Reason, Verdict,
+    doc_line, later_is_a_mistake, later_link, part_outcome, refuted, Build, ChainReport, Checked,
+    Placed, Reason, Verdict,
 };
 use crate::check::{FileReport, Justification, Options, Status};
 use crate::diag::{Code, Diagnostic, FactRef, LineIndex};
@@ -140,7 +140,7 @@ pub(super) fn distrust(
     out: &mut Vec<ChainReport>,
 ) {
     let start = out.len();
-    report_all(b, checked, (name, doc), (opts, cache), out);
+    super::partial::report_all(b, checked, (name, doc), (opts, cache), out);
     for r in out.iter_mut().skip(start) {
         if r.verdict == Verdict::Verified && !r.from.is_empty() {
             r.verdict = Verdict::NeedsContext;

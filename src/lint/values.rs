@@ -32,13 +32,15 @@ pub(super) fn declaring(text: &str, names: &HashSet<String>) -> Option<String> {
 /// The names a relation in rigor's syntax or between `$$` uses, left side first.
 fn used_names(relation: &str) -> Option<Vec<String>> {
     let latex = relation.trim().starts_with("$$");
-    let relation = relation.trim().trim_start_matches("$$").trim_end_matches("$$");
+    let relation = relation
+        .trim()
+        .trim_start_matches("$$")
+        .trim_end_matches("$$");
     let (lhs, rhs) = relation.split_once('=')?;
     let mut used = Vec::new();
     for side in [lhs, rhs] {
         let e = if latex {
-            crate::syntax::latex::parse_latex_expr(side.trim(), 0, &ParseOptions::default())
-                .ok()?
+            crate::syntax::latex::parse_latex_expr(side.trim(), 0, &ParseOptions::default()).ok()?
         } else {
             parse_expr(side.trim(), &ParseOptions::default()).ok()?
         };
@@ -60,7 +62,7 @@ fn settles(r: Option<Reason>) -> bool {
 /// scope again with it shows that it does.
 pub(super) fn suggest(
     scope: &Scope,
-    (b, sets): (&Build<'_>, (&HashSet<String>, &HashSet<String>, &HashSet<usize>)),
+    (b, sets): (&Build<'_>, super::Sets<'_>),
     (name, doc): (&str, &str),
     (opts, cache): (&Options, &Checked),
     out: &mut [ChainReport],

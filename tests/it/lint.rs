@@ -220,7 +220,8 @@ fn the_lecture_notes_with_their_symbols_declared_verify_the_rolling_and_sliding_
         let head = format!("handout_notes_declared.md:{at}: verified");
         let line = out.lines().find(|l| l.starts_with(&head));
         assert!(
-            line.is_some_and(|l| l == head || (l.starts_with(&format!("{head} from line")) && !l.contains("assuming"))),
+            line.is_some_and(|l| l == head
+                || (l.starts_with(&format!("{head} from line")) && !l.contains("assuming"))),
             "{head}\n{out}"
         );
     };

@@ -253,7 +253,10 @@ fn the_corpus_of_notes_fails_only_its_slips_and_needs_context_for_at_most_two_in
     // No false line is verified: what follows only from two slips under one heading
     // (`4 a = 3 a`, `3 a = 2 a`) needs context, and so do the slips themselves.
     for (note, lines) in [
-        ("tests/lint/corpus/adversarial.tex", ["21:3", "25:3", "29:3"]),
+        (
+            "tests/lint/corpus/adversarial.tex",
+            ["21:3", "25:3", "29:3"],
+        ),
         ("tests/lint/corpus/two_slips.md", ["9:4", "13:4", "13:4"]),
     ] {
         let (got, _, text, _) = verdicts(note);
@@ -355,8 +358,9 @@ fn a_chain_verified_from_premises_names_their_lines_in_every_format() {
     assert_eq!(at20["from"], serde_json::json!([13, 15, 16]), "{out}");
     let (out, _, _) = lint(&["--format", "github", note]);
     assert!(
-        out.contains("::notice file=tests/lint/corpus/kinetics.md,line=20,col=4,endLine=20,endColumn=")
-            && out.contains("title=verified::verified from lines 13, 15 and 16\n"),
+        out.contains(
+            "::notice file=tests/lint/corpus/kinetics.md,line=20,col=4,endLine=20,endColumn="
+        ) && out.contains("title=verified::verified from lines 13, 15 and 16\n"),
         "{out}"
     );
     // A chain that holds with nothing stated names nothing.
@@ -390,10 +394,7 @@ fn a_result_stays_in_scope_under_later_headings_unless_stated_again() {
     // Section 5 of the Markdown notes states I_G again (a ring): its chain holds with that
     // one and uses nothing carried.
     let (out, _, _) = lint(&["tests/lint/corpus/sections_carry.md"]);
-    assert!(
-        out.contains("sections_carry.md:46:4: verified\n"),
-        "{out}"
-    );
+    assert!(out.contains("sections_carry.md:46:4: verified\n"), "{out}");
 }
 
 #[test]
@@ -413,7 +414,9 @@ fn a_link_equal_to_zero_imposes_a_condition_and_what_follows_uses_it() {
             .unwrap_or_default();
         assert_eq!(chain["verdict"], "needs context", "{out}");
         assert_eq!(chain["reason"], "imposed", "{out}");
-        let message = chain["diagnostics"][0]["message"].as_str().unwrap_or_default();
+        let message = chain["diagnostics"][0]["message"]
+            .as_str()
+            .unwrap_or_default();
         assert!(
             message.starts_with(&format!("needs context: the notes impose {lhs} = 0 here")),
             "{message}"
@@ -455,8 +458,11 @@ fn a_value_the_prose_gives_is_suggested_as_the_comment_that_makes_a_chain_checka
     std::fs::create_dir_all(&dir).expect("temp dir");
     let text = std::fs::read_to_string("tests/lint/corpus/sections_carry.tex").expect("read");
     let doc = dir.join("carry.tex");
-    std::fs::write(&doc, text.replace("\\section{Falling", "% rigor: let h = 2\n\\section{Falling"))
-        .expect("write");
+    std::fs::write(
+        &doc,
+        text.replace("\\section{Falling", "% rigor: let h = 2\n\\section{Falling"),
+    )
+    .expect("write");
     let (out, _, _) = lint(&[doc.to_str().unwrap_or_default()]);
     let _ = std::fs::remove_dir_all(&dir);
     assert!(out.contains("carry.tex:39:3: verified"), "{out}");
