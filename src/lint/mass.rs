@@ -171,6 +171,8 @@ pub(super) fn over_prose_mass(
                 defines: None,
                 reason: None,
                 comment: None,
+                from: Vec::new(),
+                using: Vec::new(),
             }),
         }
     }

@@ -5,20 +5,25 @@
 //! say), a chain whose left side is a lone new symbol defining it for later chains.
 
 use crate::diag::{Code, Mistake};
+mod carry;
 mod display;
 mod extract;
+mod later;
 mod mass;
 mod partial;
 mod premises;
 mod reader;
 mod reason;
+mod sound;
+mod values;
 
 use crate::check::{check_source, FileReport, MemoryResolver, Options, Status};
 use crate::diag::{Diagnostic, LineIndex};
 use crate::syntax::ast::{Chain, Expr, ExprKind, Func, Reading, Span};
 use crate::syntax::ParseOptions;
 pub use extract::{pieces, DocKind, Piece};
-use partial::{conditions, once, verified_head, verified_tail};
+use later::{later_is_a_mistake, later_link, later_links, later_needs, Later};
+use partial::{conditions, once, report_all};
 pub use reason::Reason;
 use std::collections::{HashMap, HashSet};
 use std::sync::{Arc, Mutex};
@@ -55,6 +60,12 @@ pub struct ChainReport {
     pub reason: Option<Reason>,
     /// The `rigor:` comment that would make it checkable, where rigor knows it.
     pub comment: Option<String>,
+    /// For a verified chain: the lines of the document whose relations its links were
+    /// verified from (the premises it rests on), in order.
+    pub from: Vec<usize>,
+    /// For a verified chain: the definitions of earlier sections it used, each as
+    /// written (`I_G = \frac{m L^2}{12}`) with its line.
+    pub using: Vec<(String, usize)>,
 }
 
 /// Everything found in one document.
@@ -112,6 +123,13 @@ struct Placed {
     unwritten: bool,
     /// The names of its symbols.
     symbols: Vec<String>,
+    /// Whether its first link, stated, is not taken as a premise: with what was stated
+    /// before it, it could hold only where one of its sides is zero (`sound::unfit`).
+    contradicts: bool,
+    /// The statements that take its later links as stated.
+    givens: Vec<Part>,
+    /// Its first expression as the notes write it (`v`).
+    head: String,
 }
 
 /// What the notes derive under one heading.
@@ -126,6 +144,12 @@ struct Scope {
     /// Where the chains start that are statements of the prose (an inline relation of
     /// one link): reported only when they hold, fail or define a symbol.
     quiet: HashSet<usize>,
+    /// The definitions of earlier sections (`I_G = \frac{m L^2}{12}`), each a chain of
+    /// one link: in scope here unless the scope states its symbol again.
+    carried: Vec<Chain>,
+    /// The values the section's prose gives lone symbols (`where $r = A$`): the symbol,
+    /// and the relation as a `let` comment writes it (`r = A`, or `$$ r = \frac{L}{2} $$`).
+    values: Vec<(String, String)>,
 }
 
 enum Item {
@@ -205,6 +229,15 @@ struct Build<'a> {
     cache: &'a Checked,
     /// Whether the chain being placed is a premise the notes impose.
     imposing: bool,
+    /// Where the links start (document offsets) whose relations are not taken as
+    /// stated: they contradict what was stated before them, or they are mistakes
+    /// (`sound::unfit`).
+    skip: &'a HashSet<usize>,
+    /// The definitions of earlier sections written into this derivation: name, the
+    /// definition as the notes write it, and where it starts in the document.
+    carried: Vec<(String, String, usize)>,
+    /// Whether the definitions of earlier sections are written in.
+    carry: bool,
 }
 
 impl Scope {
@@ -215,6 +248,8 @@ impl Scope {
             names: names.clone(),
             items: Vec::new(),
             quiet: HashSet::new(),
+            carried: Vec::new(),
+            values: Vec::new(),
         }
     }
 
@@ -222,8 +257,21 @@ impl Scope {
     fn build<'a>(
         &self,
         doc: &str,
-        (time, solve): (&'a HashSet<String>, &'a HashSet<String>),
+        sets: (&'a HashSet<String>, &'a HashSet<String>, &'a HashSet<usize>),
         cache: &'a Checked,
+        carry: bool,
+    ) -> Build<'a> {
+        self.build_with(doc, sets, (cache, carry), None)
+    }
+
+    /// The derivation made from the scope, with `extra` (a `rigor:` statement and the
+    /// names it declares) after the document's statements.
+    fn build_with<'a>(
+        &self,
+        doc: &str,
+        (time, solve, skip): (&'a HashSet<String>, &'a HashSet<String>, &'a HashSet<usize>),
+        (cache, carry): (&'a Checked, bool),
+        extra: Option<&(String, Vec<String>)>,
     ) -> Build<'a> {
         let mut b = Build {
             deriv: self.directives.clone(),
@@ -235,7 +283,19 @@ impl Scope {
             solve,
             cache,
             imposing: false,
+            skip,
+            carried: Vec::new(),
+            carry,
         };
+        if let Some((text, names)) = extra {
+            b.deriv.push_str(text);
+            b.deriv.push('\n');
+            b.declared.extend(names.iter().cloned());
+            b.known.extend(names.iter().cloned());
+        }
+        if b.carry {
+            carry::place_carried(self, doc, &mut b);
+        }
         for item in &self.items {
             match item {
                 Item::Directive(text, names) => {
@@ -255,15 +315,40 @@ impl Scope {
         b
     }
 
+    /// Checks the scope and gives each chain its verdict (`close_with`); then, when it
+    /// has results of earlier sections and chains that need context, checks it again
+    /// with those results written in (`carry.rs`): a chain not verified without them
+    /// that is verified with them, and one that needs context without them and fails
+    /// with them, takes that verdict. A chain that holds as the section writes it (a
+    /// letter reused: `I_G` of another body, used as any) keeps its own.
+    fn close(
+        &self,
+        (name, doc): (&str, &LineIndex<'_>),
+        (opts, cache): (&Options, &Checked),
+        out: &mut Vec<ChainReport>,
+    ) {
+        let mut base = Vec::new();
+        self.close_with((name, doc), (opts, cache), false, &mut base);
+        let open = |r: &ChainReport| matches!(r.verdict, Verdict::NeedsContext | Verdict::Failed);
+        if self.carried.is_empty() || !base.iter().any(open) {
+            out.extend(base);
+            return;
+        }
+        let mut with = Vec::new();
+        self.close_with((name, doc), (opts, cache), true, &mut with);
+        carry::settle(base, &with, out);
+    }
+
     /// Checks the scope's derivation and gives each chain its verdict. A name the
     /// linter assumed (no `rigor:` comment declares it) that the facts determine is
     /// then declared with `unknowns` and the scope checked again: in notes, letters are
     /// not declared as given quantities, so `N` found from `N - m g cos(beta) = 0` is
     /// solved for, not held fixed.
-    fn close(
+    fn close_with(
         &self,
         (name, doc): (&str, &LineIndex<'_>),
         (opts, cache): (&Options, &Checked),
+        carry: bool,
         out: &mut Vec<ChainReport>,
     ) {
         let mut time = HashSet::new();
@@ -286,8 +371,9 @@ impl Scope {
             }
         }
         let mut solve = HashSet::new();
-        for round in 0..3 {
-            let b = self.build(doc.text(), (&time, &solve), cache);
+        let mut skip = HashSet::new();
+        for round in 0..ROUNDS {
+            let b = self.build(doc.text(), (&time, &solve, &skip), cache, carry);
             if b.placed.is_empty() {
                 return;
             }
@@ -301,53 +387,48 @@ impl Scope {
                 })
                 .filter(|n| !b.known.contains(n) && !solve.contains(n))
                 .collect();
-            if more.is_empty() || round == 2 {
-                // A failure that positive values of the symbols the linter declared
-                // would remove is a sign the notes do not state, not a slip.
-                let positive = b
-                    .placed
-                    .iter()
-                    .any(|p| verdict(&checked, p).verdict == Verdict::Failed)
-                    .then(|| premises::positive(&b.deriv))
-                    .map(|(deriv, names)| (cache.report(name, &deriv, opts), names));
-                for p in &b.placed {
-                    let mut report = verdict(&checked, p);
-                    if let Some((again, names)) = &positive {
-                        premises::unsigned(&mut report, verdict(again, p), (&p.symbols, names));
-                    }
-                    for d in &mut report.diagnostics {
-                        document_lines(d, &b.deriv, &b.placed, doc);
-                    }
-                    let needs = report.verdict == Verdict::NeedsContext;
-                    let tail = needs.then(|| verified_tail(&checked, p)).flatten();
-                    // A verified head is reported on its own; the rest of the chain,
-                    // from the head's last expression, is what needs context.
-                    if let Some((head, from)) = needs.then(|| verified_head(&checked, p)).flatten()
-                    {
-                        report.span = Span::new(from, report.span.end);
-                        out.push(head);
-                    }
-                    out.push(report);
-                    out.extend(tail);
+            if !more.is_empty() && round < 2 {
+                solve.extend(more);
+                continue;
+            }
+            // Stated relations become premises only when they fit together: one that
+            // contradicts those before it, or a mistake, is taken back and the scope
+            // checked again without it (two slips must not make a third line follow).
+            let unfit: Vec<usize> = sound::unfit(&checked, &b, (name, doc.text()), opts)
+                .into_iter()
+                .filter(|k| !skip.contains(k))
+                .collect();
+            if !unfit.is_empty() {
+                if round + 1 < ROUNDS {
+                    skip.extend(unfit);
+                    continue;
                 }
+                // Out of rounds: nothing is verified from the facts in scope.
+                sound::distrust(&b, &checked, (name, doc), (opts, cache), out);
                 return;
             }
-            solve.extend(more);
+            let start = out.len();
+            report_all(&b, &checked, (name, doc), (opts, cache), out);
+            let sets = (&time, &solve, &skip);
+            values::suggest(
+                self,
+                (&b, sets),
+                (name, doc.text()),
+                (opts, cache),
+                &mut out[start..],
+            );
+            return;
         }
     }
 }
 
-/// A link after the first of a chain.
-struct Later {
-    /// Where it is in the document (from its left side to the end of its right side).
-    span: Span,
-    /// Where its right side starts.
-    rhs: usize,
-    /// The symbols it brings in that nothing before it in the scope used.
-    fresh: Vec<String>,
-    /// Whether every symbol of the chain up to it is one the document declared or defined.
-    firm: bool,
-}
+/// The sets a scope's derivation is built with: names written with a derivative, names
+/// to solve for, links not taken as stated.
+type Sets<'a> = (&'a HashSet<String>, &'a HashSet<String>, &'a HashSet<usize>);
+
+/// How many times a scope is checked at most (with names to solve for, then without
+/// the stated relations that do not fit).
+const ROUNDS: usize = 6;
 
 /// Checks the chains of `doc`. Each heading starts a new scope: notes reuse letters
 /// from one section to the next (R a radius, then a reaction), so what one section
@@ -384,23 +465,33 @@ pub fn lint(name: &str, doc: &str, kind: DocKind, opts: &Options) -> LintReport 
 /// line of the `rigor:` statements is not a line of the notes: a fact on one is not
 /// cited.
 fn document_lines(d: &mut Diagnostic, deriv: &str, placed: &[Placed], doc: &LineIndex<'_>) {
-    let doc_line = |n: usize| -> Option<usize> {
-        let line_start = deriv
-            .split_inclusive('\n')
-            .take(n.checked_sub(1)?)
-            .map(str::len)
-            .sum::<usize>();
-        let line_end = line_start + deriv.get(line_start..)?.find('\n').unwrap_or(0);
-        let at = placed
-            .iter()
-            .flat_map(|p| p.first.iter().chain(p.rest.iter()).chain(p.stated.iter()))
-            .flatten()
-            .find(|(at, _, _)| *at >= line_start && *at <= line_end)?
-            .1;
-        Some(doc.line_col(at).0)
-    };
+    let doc_line = |n: usize| doc_line(n, deriv, placed, doc);
     d.message = d.message.renumber(&doc_line);
     d.notes = d.notes.iter().map(|n| n.renumber(&doc_line)).collect();
+}
+
+/// The line of the document that line `n` of the derivation came from, if it came
+/// from the notes (not from a `rigor:` statement or a declaration).
+fn doc_line(n: usize, deriv: &str, placed: &[Placed], doc: &LineIndex<'_>) -> Option<usize> {
+    let line_start = deriv
+        .split_inclusive('\n')
+        .take(n.checked_sub(1)?)
+        .map(str::len)
+        .sum::<usize>();
+    let line_end = line_start + deriv.get(line_start..)?.find('\n').unwrap_or(0);
+    let at = placed
+        .iter()
+        .flat_map(|p| {
+            p.first
+                .iter()
+                .chain(p.rest.iter())
+                .chain(p.stated.iter())
+                .chain(p.givens.iter())
+        })
+        .flatten()
+        .find(|(at, _, _)| *at >= line_start && *at <= line_end)?
+        .1;
+    Some(doc.line_col(at).0)
 }
 
 /// Writes a chain into the derivation: its new symbols declared, then as a `let` (a
@@ -416,13 +507,18 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         solve,
         cache,
         imposing,
+        skip,
+        ..
     } = b;
     let mut names = first_link_names(chain);
     let is_known = |n: &String| known.contains(n.trim_end_matches('\'')) || n == "t";
     let firm = !*imposing && names.iter().all(is_known);
     let loose = premises::loose_approximations(chain, deriv);
     let constraint = is_constraint(&names, time);
-    let later = later_links(chain, &mut names, seen, &is_known);
+    let mut later = later_links(chain, &mut names, seen, &is_known);
+    for l in &mut later {
+        l.skipped = skip.contains(&l.span.start);
+    }
     seen.extend(names.iter().map(|n| n.trim_end_matches('\'').to_string()));
     let chain_names = names.clone();
     let defines = new_symbol(chain, declared, time);
@@ -470,12 +566,12 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
             // fact once verified, and a mistake (never a fact) if not.
             let claim = write("claim", &first_link, deriv);
             let kw = if constraint { "constraint" } else { "given" };
-            stated = if firm && !constraint {
+            stated = if (firm && !constraint) || skip.contains(&chain.first.span.start) {
                 None
             } else {
                 write(kw, &first_link, deriv)
             };
-            (claim, matches!(chain.first.kind, ExprKind::Sym(_)))
+            (claim, lone(&chain.first))
         }
     };
     let rest = rest_span.and_then(|r| write("claim", &[link0.rhs.span, r], deriv));
@@ -484,17 +580,19 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
     let unwritten = (first.is_none() && !states) || (rest_span.is_some() && rest.is_none());
     // Then each later link is taken as stated too, as the first is: one that does not
     // follow states something new (`m y'' = 0`), which later chains may use.
+    let mut givens = Vec::new();
     for ((prev, l), later) in chain
         .links
         .iter()
         .zip(chain.links.iter().skip(1))
         .zip(&later)
     {
-        if !later.firm {
-            let _ = write("given", &[prev.rhs.span, l.span], deriv);
+        if !later.firm && !skip.contains(&later.span.start) {
+            givens.extend(write("given", &[prev.rhs.span, l.span], deriv));
         }
     }
     let defined = (first.is_none() && states).then_some(defines).flatten();
+    let contradicts = first.is_some() && skip.contains(&chain.first.span.start);
     placed.push(Placed {
         first,
         rest,
@@ -509,7 +607,22 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         loose,
         unwritten,
         symbols: chain_names,
+        contradicts,
+        givens,
+        head: text(chain.first.span).trim().to_string(),
     });
+}
+
+/// Whether `e` is a lone symbol or a power of one (`\omega^2 = \frac{g}{L}` states what
+/// `\omega` is, as `T = 2\pi/\omega` states `T`).
+fn lone(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Sym(_) => true,
+        ExprKind::Bin(crate::syntax::ast::BinOp::Pow, base, exp) => {
+            matches!(base.kind, ExprKind::Sym(_)) && matches!(exp.kind, ExprKind::Num(_))
+        }
+        _ => false,
+    }
 }
 
 /// The text of `s` in the document on one line: a link may run over several rows of a
@@ -728,6 +841,26 @@ fn refuted(d: &Diagnostic) -> bool {
     )
 }
 
+/// The report of a chain that could not be written as a derivation.
+fn unwritten(p: &Placed) -> ChainReport {
+    ChainReport {
+        span: p.span,
+        verdict: Verdict::NeedsContext,
+        diagnostics: vec![Diagnostic::error(
+            Code::NotVerified,
+            "needs context: rigor reads this chain but cannot write it as a derivation, so it is not checked",
+            p.span,
+            "",
+        )],
+        assuming: Vec::new(),
+        defines: None,
+        reason: None,
+        comment: None,
+        from: Vec::new(),
+        using: Vec::new(),
+    }
+}
+
 /// The verdict on a placed chain, and for one that needs context, why.
 fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
     let mut report = verdict_on(checked, p);
@@ -746,20 +879,7 @@ fn verdict(checked: &FileReport, p: &Placed) -> ChainReport {
 /// first link must hold on its own, or state a relation for a lone symbol.
 fn verdict_on(checked: &FileReport, p: &Placed) -> ChainReport {
     if p.unwritten {
-        return ChainReport {
-            span: p.span,
-            verdict: Verdict::NeedsContext,
-            diagnostics: vec![Diagnostic::error(
-                Code::NotVerified,
-                "needs context: rigor reads this chain but cannot write it as a derivation, so it is not checked",
-                p.span,
-                "",
-            )],
-            assuming: Vec::new(),
-            defines: None,
-            reason: None,
-            comment: None,
-        };
+        return unwritten(p);
     }
     let holds = |s: &[Status]| !s.is_empty() && s.iter().all(Status::is_verified);
     let (first_statuses, mut first_diags) = match &p.first {
@@ -782,6 +902,8 @@ fn verdict_on(checked: &FileReport, p: &Placed) -> ChainReport {
             defines: None,
             reason: None,
             comment: None,
+            from: Vec::new(),
+            using: Vec::new(),
         };
     }
     // A verified chain says what its links assume (a division the signs do not show safe).
@@ -799,10 +921,16 @@ fn verdict_on(checked: &FileReport, p: &Placed) -> ChainReport {
         defines: p.defines.clone(),
         reason: None,
         comment: None,
+        from: Vec::new(),
+        using: Vec::new(),
     };
     if let Some((s, mut d)) = rest {
+        later::imposed_or_false(p, &mut d);
         if d.iter().any(refuted) {
-            if d.iter().any(|x| refuted(x) && later_is_a_mistake(p, x)) {
+            let mistake = |x: &Diagnostic| {
+                later_is_a_mistake(p, x) || later_link(p, x).is_some_and(|l| l.skipped)
+            };
+            if d.iter().any(|x| refuted(x) && mistake(x)) {
                 return report(Verdict::Failed, d);
             }
             for x in d.iter_mut().filter(|x| refuted(x)) {
@@ -838,6 +966,8 @@ fn verdict_on(checked: &FileReport, p: &Placed) -> ChainReport {
             d.mistake = None;
             d.message = if p.imposed {
                 premises::IMPOSED.into()
+            } else if p.contradicts {
+                sound::CONTRADICTS.into()
             } else {
                 "needs context: this relation does not hold for every value of its symbols; the document must define or give it".into()
             };
@@ -852,65 +982,4 @@ fn verdict_on(checked: &FileReport, p: &Placed) -> ChainReport {
         ));
     }
     report(Verdict::NeedsContext, first_diags)
-}
-
-/// The later link a diagnostic is about.
-fn later_link<'a>(p: &'a Placed, d: &Diagnostic) -> Option<&'a Later> {
-    let at = d.primary.as_ref()?.0.start;
-    p.later
-        .iter()
-        .find(|l| at >= l.span.start && at < l.span.end)
-}
-
-/// Whether a later link that does not hold is a mistake rather than something the
-/// notes take from prose: every symbol of the chain up to it is one the document
-/// declared or defined; or it brings in nothing new and fails as algebra, without the
-/// relations the notes stated before (a step that contradicts only those states
-/// something new: `N - m g cos(beta) = m y'' = 0`).
-fn later_is_a_mistake(p: &Placed, d: &Diagnostic) -> bool {
-    let Some(link) = later_link(p, d) else {
-        return true;
-    };
-    link.firm || (link.fresh.is_empty() && !d.message.cites_facts())
-}
-
-/// Why a later link that does not hold needs context.
-fn later_needs(p: &Placed, d: &Diagnostic) -> String {
-    match later_link(p, d) {
-        Some(l) if !l.fresh.is_empty() => format!(
-            "needs context: this step brings in {}, which nothing before it defines; the notes must give {}",
-            l.fresh.join(", "),
-            if l.fresh.len() == 1 { "it" } else { "them" }
-        ),
-        _ => "needs context: this step does not follow from the relations before it; it states something new, which the notes must justify".into(),
-    }
-}
-
-/// The links after the first, each with the symbols it brings in (`names`: those of
-/// the links before, extended with its own). A later link that brings in a symbol
-/// nothing before it in the scope used relies on something the notes say in prose
-/// (`dA = 2 pi r dr`), not on the algebra.
-fn later_links(
-    chain: &Chain,
-    names: &mut Vec<String>,
-    seen: &HashSet<String>,
-    is_known: &dyn Fn(&String) -> bool,
-) -> Vec<Later> {
-    let mut later = Vec::new();
-    for (prev, l) in chain.links.iter().zip(chain.links.iter().skip(1)) {
-        let before = names.len();
-        free(&l.rhs, &mut Vec::new(), names);
-        let fresh: Vec<String> = names[before..]
-            .iter()
-            .filter(|n| !seen.contains(n.trim_end_matches('\'')) && !is_known(n))
-            .cloned()
-            .collect();
-        later.push(Later {
-            span: Span::new(prev.rhs.span.start, l.span.end),
-            rhs: l.rhs.span.start,
-            fresh,
-            firm: names.iter().all(is_known),
-        });
-    }
-    later
 }

@@ -1,9 +1,14 @@
-//! The parts of a chain that needs context which hold on their own, reported as chains
-//! of their own: the links from its start up to the first that does not hold (with
-//! nothing assumed), and from its last failing link to its end.
+//! The reports of a scope's chains, and the parts of a chain that needs context which
+//! hold on their own, reported as chains of their own: the links from its start up to
+//! the first that does not hold (with nothing assumed), and from its last failing link
+//! to its end.
 
-use super::{part_outcome, ChainReport, Placed, Verdict};
-use crate::check::{FileReport, Status};
+use super::{
+    document_lines, part_outcome, premises, sound, verdict, Build, ChainReport, Checked, Placed,
+    Verdict,
+};
+use crate::check::{FileReport, Options, Status};
+use crate::diag::LineIndex;
 use crate::syntax::ast::Span;
 use std::collections::HashSet;
 
@@ -25,6 +30,8 @@ pub(super) fn verified_tail(checked: &FileReport, p: &Placed) -> Option<ChainRep
         defines: None,
         reason: None,
         comment: None,
+        from: Vec::new(),
+        using: Vec::new(),
     })
 }
 
@@ -76,6 +83,46 @@ pub(super) fn verified_head(checked: &FileReport, p: &Placed) -> Option<(ChainRe
         defines: None,
         reason: None,
         comment: None,
+        from: Vec::new(),
+        using: Vec::new(),
     };
     Some((head, from))
+}
+
+/// Each chain of a scope's derivation with its verdict, in document terms.
+pub(super) fn report_all(
+    b: &Build<'_>,
+    checked: &FileReport,
+    (name, doc): (&str, &LineIndex<'_>),
+    (opts, cache): (&Options, &Checked),
+    out: &mut Vec<ChainReport>,
+) {
+    // A failure that positive values of the symbols the linter declared
+    // would remove is a sign the notes do not state, not a slip.
+    let positive = b
+        .placed
+        .iter()
+        .any(|p| verdict(checked, p).verdict == Verdict::Failed)
+        .then(|| premises::positive(&b.deriv))
+        .map(|(deriv, names)| (cache.report(name, &deriv, opts), names));
+    for p in &b.placed {
+        let mut report = verdict(checked, p);
+        if let Some((again, names)) = &positive {
+            premises::unsigned(&mut report, verdict(again, p), (&p.symbols, names));
+        }
+        for d in &mut report.diagnostics {
+            document_lines(d, &b.deriv, &b.placed, doc);
+        }
+        let needs = report.verdict == Verdict::NeedsContext;
+        let tail = needs.then(|| verified_tail(checked, p)).flatten();
+        // A verified head is reported on its own; the rest of the chain,
+        // from the head's last expression, is what needs context.
+        if let Some((head, from)) = needs.then(|| verified_head(checked, p)).flatten() {
+            report.span = Span::new(from, report.span.end);
+            out.push(head);
+        }
+        sound::premises_of(&mut report, (checked, p), (b, doc));
+        out.push(report);
+        out.extend(tail);
+    }
 }

@@ -208,6 +208,18 @@ pub(super) fn positive(deriv: &str) -> (String, Vec<String>) {
     (text, names)
 }
 
+/// The derivation with every symbol the linter declared (on a line ending in [`ROOM`])
+/// declared nonzero instead.
+pub(super) fn nonzero(deriv: &str) -> String {
+    deriv
+        .split_inclusive('\n')
+        .map(|l| match l.strip_suffix(&format!("{ROOM}\n")) {
+            Some(decl) if decl.starts_with("symbols ") => format!("{decl} != 0\n"),
+            _ => l.to_string(),
+        })
+        .collect()
+}
+
 /// A failed chain that does not fail with the linter's symbols positive needs their
 /// sign: its report says which, and the comment that gives it.
 pub(super) fn unsigned(

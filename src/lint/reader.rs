@@ -36,6 +36,8 @@ pub(super) struct Reader<'a> {
     last: Option<Expr>,
     /// The lone symbols the current display scope gave a value, with that value.
     values: HashMap<String, String>,
+    /// The definitions of the sections closed so far (`carry.rs`).
+    carried: Vec<Chain>,
     doc: &'a str,
     popts: ParseOptions,
     opts: &'a Options,
@@ -53,6 +55,7 @@ impl<'a> Reader<'a> {
             names: HashSet::new(),
             last: None,
             values: HashMap::new(),
+            carried: Vec::new(),
             doc,
             popts: ParseOptions {
                 max_depth: opts.parse.max_depth,
@@ -84,6 +87,7 @@ impl<'a> Reader<'a> {
     }
 
     fn heading(&mut self) {
+        super::carry::left_by(&self.scope, &mut self.carried);
         self.fresh_scope();
         let prose = Scope::under(&self.directives, &self.names);
         self.scopes.push(std::mem::replace(&mut self.prose, prose));
@@ -92,12 +96,14 @@ impl<'a> Reader<'a> {
 
     /// A new scope for the displays (the inline relations' scope goes on).
     fn fresh_scope(&mut self) {
-        let scope = Scope::under(&self.directives, &self.names);
+        let mut scope = Scope::under(&self.directives, &self.names);
+        scope.carried = self.carried.clone();
         self.scopes.push(std::mem::replace(&mut self.scope, scope));
         self.values.clear();
     }
 
     fn directive(&mut self, text: String) {
+        let text = super::values::declaring(&text, &self.names).unwrap_or(text);
         // `small theta` marks a symbol declared elsewhere: declared here when it is not.
         let text = match text.strip_prefix("small ") {
             Some(rest) => {
@@ -183,6 +189,19 @@ impl<'a> Reader<'a> {
                         .filter(|c| c.verdict != Verdict::NeedsContext),
                 );
                 if let Some(c) = &rest {
+                    // A value the prose gives a lone symbol, wherever in the section:
+                    // the comment that would make a chain checkable, where it does.
+                    if let (ExprKind::Sym(n), [l]) = (&c.first.kind, c.links.as_slice()) {
+                        if l.op == RelOp::Eq {
+                            let plain = source(&l.rhs);
+                            let value = if plain.contains('(') {
+                                format!("$$ {n} = {} $$", self.flat(l.rhs.span))
+                            } else {
+                                format!("{n} = {plain}")
+                            };
+                            self.scope.values.push((n.clone(), value));
+                        }
+                    }
                     // `$\mu = 0$`, `$h = 2$`: a case or a value the sentence sets.
                     let value = matches!(c.first.kind, ExprKind::Sym(_))
                         && c.links.iter().all(|l| !has_symbols(&l.rhs));
@@ -211,6 +230,11 @@ impl<'a> Reader<'a> {
                 self.scope.items.extend(rest.map(item));
             }
         }
+    }
+
+    /// The document's text in `s`, on one line.
+    fn flat(&self, s: Span) -> String {
+        super::flat(&self.cleaned, s).trim().to_string()
     }
 
     /// A lone symbol given a value different from the one it was given before under
@@ -265,6 +289,8 @@ fn read(
         defines: None,
         reason: Some(super::Reason::Unread),
         comment: None,
+        from: Vec::new(),
+        using: Vec::new(),
     };
     let after = e.span.end.saturating_sub(at);
     match extract::equals_after(rel, after) {

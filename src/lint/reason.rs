@@ -17,8 +17,11 @@ pub enum Reason {
     NewSymbol,
     /// A relation stated, not derived: it does not hold for every value of its symbols.
     Stated,
-    /// A premise the notes impose (before an implication arrow).
+    /// A premise the notes impose (before an implication arrow, or a link `= 0` that
+    /// is a condition such as rolling without slipping).
     Imposed,
+    /// A relation that does not fit those stated before it, or that uses one.
+    Contradiction,
     /// An approximation with nothing declared small and not between numbers.
     Approximation,
     /// It holds where symbols the notes never declared are positive.
@@ -38,6 +41,7 @@ impl Reason {
             Reason::NewSymbol => "new-symbol",
             Reason::Stated => "stated",
             Reason::Imposed => "imposed",
+            Reason::Contradiction => "contradiction",
             Reason::Approximation => "approximation",
             Reason::Sign => "sign",
             Reason::Undetermined => "undetermined",
@@ -55,8 +59,10 @@ pub(super) fn of(checked: &FileReport, p: &Placed, diags: &[Diagnostic]) -> Reas
     };
     if p.unwritten {
         Reason::Unchecked
-    } else if p.imposed {
+    } else if p.imposed || diags.iter().any(|d| super::later::imposes(p, d)) {
         Reason::Imposed
+    } else if p.contradicts {
+        Reason::Contradiction
     } else if diags
         .iter()
         .any(|d| at(d).is_some_and(|a| p.loose.iter().any(|l| a >= l.span.start && a < l.span.end)))

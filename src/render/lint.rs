@@ -14,6 +14,36 @@ fn word(v: &Verdict) -> &'static str {
     }
 }
 
+/// How a verified chain's report says what it rests on: ` from lines 12 and 14, using
+/// I_G = … from line 8` (empty when it rests on nothing stated).
+fn rests_on(from: &[usize], using: &[(String, usize)]) -> String {
+    let mut out = String::new();
+    if !from.is_empty() {
+        let lines: Vec<String> = from.iter().map(usize::to_string).collect();
+        let list = match lines.split_last() {
+            Some((last, [])) => format!("line {last}"),
+            Some((last, rest)) => format!("lines {} and {last}", rest.join(", ")),
+            None => String::new(),
+        };
+        out.push_str(&format!(" from {list}"));
+    }
+    for (i, (text, line)) in using.iter().enumerate() {
+        out.push_str(if i == 0 { ", using " } else { " and " });
+        out.push_str(&format!("{text} from line {line}"));
+    }
+    out
+}
+
+/// A `rigor:` statement as a comment of the document's kind: `% rigor: …` in LaTeX,
+/// `<!-- rigor: … -->` in Markdown.
+fn comment_in(path: &str, k: &str) -> String {
+    if path.ends_with(".tex") {
+        format!("% {k}")
+    } else {
+        format!("<!-- {k} -->")
+    }
+}
+
 /// The human report: (standard output, standard error).
 pub fn human(r: &LintReport) -> (String, String) {
     let (mut out, mut err) = (String::new(), String::new());
@@ -30,15 +60,19 @@ pub fn human(r: &LintReport) -> (String, String) {
             format!(": {}", m.strip_prefix("needs context: ").unwrap_or(m))
         });
         match c.verdict {
-            Verdict::Verified if c.assuming.is_empty() => {
-                out.push_str(&format!("{}:{line}:{col}: verified\n", r.path))
+            // What it rests on, and what the signs do not show, as `check` says it.
+            Verdict::Verified => {
+                let assuming = if c.assuming.is_empty() {
+                    String::new()
+                } else {
+                    format!(", assuming {}", c.assuming.join(" and "))
+                };
+                out.push_str(&format!(
+                    "{}:{line}:{col}: verified{}{assuming}\n",
+                    r.path,
+                    rests_on(&c.from, &c.using)
+                ))
             }
-            // What the signs do not show is said, as `check` says it.
-            Verdict::Verified => out.push_str(&format!(
-                "{}:{line}:{col}: verified, assuming {}\n",
-                r.path,
-                c.assuming.join(" and ")
-            )),
             // A definition is taken as the notes give it: said, never counted as checked.
             Verdict::Defined => out.push_str(&format!(
                 "{}:{line}:{col}: defines {}\n",
@@ -46,7 +80,18 @@ pub fn human(r: &LintReport) -> (String, String) {
                 c.defines.as_deref().unwrap_or("a new symbol")
             )),
             Verdict::NeedsContext => {
-                out.push_str(&format!("{}:{line}:{col}: needs context{why}\n", r.path))
+                // The comment that makes it checkable, as the document writes comments.
+                let add = c
+                    .comment
+                    .as_ref()
+                    .filter(|k| !why.contains(k.as_str()))
+                    .map_or(String::new(), |k| {
+                        format!("; `{}` makes it checkable", comment_in(&r.path, k))
+                    });
+                out.push_str(&format!(
+                    "{}:{line}:{col}: needs context{why}{add}\n",
+                    r.path
+                ))
             }
             Verdict::Failed => {
                 out.push_str(&format!("{}:{line}:{col}: FAILED{why}\n", r.path));
@@ -92,6 +137,8 @@ pub fn json(r: &LintReport) -> String {
             json!({"line": line, "column": column, "verdict": word(&c.verdict),
                    "assuming": c.assuming, "defines": c.defines,
                    "reason": c.reason.map(|r| r.as_str()), "comment": c.comment,
+                   "from": c.from,
+                   "using": c.using.iter().map(|(t, l)| json!({"relation": t, "line": l})).collect::<Vec<_>>(),
                    "diagnostics": diags})
         })
         .collect();
@@ -108,7 +155,8 @@ pub fn json(r: &LintReport) -> String {
 
 /// GitHub annotations: an error for each diagnostic of a failed chain, a notice for
 /// each chain that needs context (its reason, and the `rigor:` comment that would make
-/// it checkable where rigor knows it).
+/// it checkable where rigor knows it), and a notice for each chain verified from
+/// premises, naming them.
 pub fn github(r: &LintReport) -> String {
     let idx = LineIndex::new(&r.source);
     let mut out = String::new();
@@ -132,6 +180,15 @@ pub fn github(r: &LintReport) -> String {
                     d.add_note(format!("to have it checked: {comment}"));
                 }
                 out.push_str(&super::github::command_in(&r.path, &idx, &d));
+            }
+            Verdict::Verified if !c.from.is_empty() || !c.using.is_empty() => {
+                let (line, col) = idx.line_col(c.span.start);
+                let (end_line, end_col) = idx.line_col(c.span.end.max(c.span.start));
+                out.push_str(&format!(
+                    "::notice file={},line={line},col={col},endLine={end_line},endColumn={end_col},title=verified::{}\n",
+                    super::github::escape_property(&r.path),
+                    super::github::escape_data(&format!("verified{}", rests_on(&c.from, &c.using)))
+                ));
             }
             _ => {}
         }

@@ -195,14 +195,21 @@ fn a_wrong_centroidal_value_is_a_definition_never_verified() {
 }
 
 /// The notes of `tests/lint/corpus/`: our own notes in the forms public lecture notes
-/// use (LaTeX chapters, Markdown summaries, MyST, MathJax `\[ \]`), none written for
-/// rigor (no `rigor:` comment), with six slips planted.
-const CORPUS: [&str; 5] = [
+/// use (LaTeX chapters, Markdown summaries, Obsidian bullets, MyST, MathJax `\[ \]`),
+/// none written for rigor (no `rigor:` comment), with nine slips planted and the
+/// adversarial cases: two wrong premises under one heading, a wrong definition, vectors,
+/// approximations with nothing declared small.
+const CORPUS: [&str; 10] = [
+    "tests/lint/corpus/adversarial.tex",
     "tests/lint/corpus/impact.tex",
     "tests/lint/corpus/inertia.md",
     "tests/lint/corpus/kinetics.md",
     "tests/lint/corpus/pendulum.tex",
+    "tests/lint/corpus/pendulum_obsidian.md",
     "tests/lint/corpus/rolling_myst.md",
+    "tests/lint/corpus/sections_carry.md",
+    "tests/lint/corpus/sections_carry.tex",
+    "tests/lint/corpus/two_slips.md",
 ];
 
 #[test]
@@ -224,22 +231,39 @@ fn the_corpus_of_notes_fails_only_its_slips_and_needs_context_for_at_most_two_in
         );
     }
     // Every failure is a planted slip, on its line: an inverted restitution power, the
-    // plate's corner distance, a radius of gyration without its root, the disk's
-    // pendulum frequency inverted, the disk's rolling acceleration.
+    // plate's corner distance, a radius of gyration without its root, the pin reaction
+    // (mg/2 for mg/4: with the stated angular acceleration it would make g zero), the
+    // disk's pendulum frequency inverted, the rod's pendulum frequency inverted, the
+    // disk's rolling acceleration, a fraction inverted after an arrow, the rod's kinetic
+    // energy doubled (with I_O from an earlier section).
     assert_eq!(
         failed,
         [
             "tests/lint/corpus/impact.tex:43",
             "tests/lint/corpus/inertia.md:50",
             "tests/lint/corpus/inertia.md:64",
+            "tests/lint/corpus/kinetics.md:41",
             "tests/lint/corpus/pendulum.tex:45",
+            "tests/lint/corpus/pendulum_obsidian.md:41",
             "tests/lint/corpus/rolling_myst.md:54",
+            "tests/lint/corpus/sections_carry.md:58",
+            "tests/lint/corpus/sections_carry.tex:46",
         ]
     );
-    // The sixth slip (R_A = mg/2 for mg/4) is not shown false: the stated angular
-    // acceleration ties g, and rigor does not refute what the facts may allow.
-    let (got, _, text, _) = verdicts("tests/lint/corpus/kinetics.md");
-    assert!(got.contains(&"41:4 needs context".to_string()), "{text}");
+    // No false line is verified: what follows only from two slips under one heading
+    // (`4 a = 3 a`, `3 a = 2 a`) needs context, and so do the slips themselves.
+    for (note, lines) in [
+        (
+            "tests/lint/corpus/adversarial.tex",
+            ["21:3", "25:3", "29:3"],
+        ),
+        ("tests/lint/corpus/two_slips.md", ["9:4", "13:4", "13:4"]),
+    ] {
+        let (got, _, text, _) = verdicts(note);
+        for at in lines {
+            assert!(got.contains(&format!("{at} needs context")), "{at}: {text}");
+        }
+    }
     // `\sqrt{R^2/2} = R/\sqrt{2}` holds for R > 0, which the notes never say: it needs
     // that sign, and the report gives the comment that declares it.
     let (out, _, _) = lint(&["tests/lint/corpus/inertia.md"]);
@@ -260,7 +284,7 @@ fn the_corpus_of_notes_fails_only_its_slips_and_needs_context_for_at_most_two_in
     assert_eq!(last["line"], 53, "{out}");
     assert_eq!(last["verdict"], "needs context", "{out}");
     assert_eq!(last["comment"], "rigor: small theta to order 2", "{out}");
-    assert_eq!(chains, 58);
+    assert_eq!(chains, 105);
     assert!(needs * 5 <= chains * 2, "{needs} of {chains} need context");
 }
 
@@ -312,4 +336,134 @@ fn json_and_github_give_each_chain_that_needs_context_its_reason_and_the_comment
         2,
         "{out}"
     );
+}
+
+#[test]
+fn a_chain_verified_from_premises_names_their_lines_in_every_format() {
+    let note = "tests/lint/corpus/kinetics.md";
+    let (out, _, _) = lint(&[note]);
+    assert!(
+        out.contains("kinetics.md:20:4: verified from lines 13, 15 and 16, assuming"),
+        "{out}"
+    );
+    let (out, _, _) = lint(&["--format", "json", note]);
+    let v: serde_json::Value = serde_json::from_str(out.trim()).expect("json");
+    let at20 = v["chains"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .find(|c| c["line"] == 20)
+        .cloned()
+        .unwrap_or_default();
+    assert_eq!(at20["from"], serde_json::json!([13, 15, 16]), "{out}");
+    let (out, _, _) = lint(&["--format", "github", note]);
+    assert!(
+        out.contains(
+            "::notice file=tests/lint/corpus/kinetics.md,line=20,col=4,endLine=20,endColumn="
+        ) && out.contains("title=verified::verified from lines 13, 15 and 16\n"),
+        "{out}"
+    );
+    // A chain that holds with nothing stated names nothing.
+    let (out, _, _) = lint(&["tests/lint/corpus/inertia.md"]);
+    assert!(out.contains("inertia.md:17:1: verified\n"), "{out}");
+}
+
+#[test]
+fn a_result_stays_in_scope_under_later_headings_unless_stated_again() {
+    for (note, using) in [
+        (
+            "tests/lint/corpus/sections_carry.md",
+            [
+                ":28:4: verified, using I_G = \\frac{1}{2} m R^2 from line 9\n",
+                ":38:4: verified, using I_G = \\frac{1}{2} m R^2 from line 9 and v_G = \\omega R from line 30\n",
+            ],
+        ),
+        (
+            "tests/lint/corpus/sections_carry.tex",
+            [
+                ":16:3: verified, using I_G = \\frac{m L^2}{12} from line 9\n",
+                ":46:7: FAILED: this step does not hold\n",
+            ],
+        ),
+    ] {
+        let (out, _, _) = lint(&[note]);
+        for u in using {
+            assert!(out.contains(&format!("{note}{u}")), "{u}\n{out}");
+        }
+    }
+    // Section 5 of the Markdown notes states I_G again (a ring): its chain holds with that
+    // one and uses nothing carried.
+    let (out, _, _) = lint(&["tests/lint/corpus/sections_carry.md"]);
+    assert!(out.contains("sections_carry.md:46:4: verified\n"), "{out}");
+}
+
+#[test]
+fn a_link_equal_to_zero_imposes_a_condition_and_what_follows_uses_it() {
+    for (note, line, lhs) in [
+        ("tests/lint/corpus/sections_carry.md", 20, "v_C"),
+        ("tests/lint/corpus/sections_carry.tex", 29, "v_P"),
+    ] {
+        let (out, _, code) = lint(&["--format", "json", note]);
+        let v: serde_json::Value = serde_json::from_str(out.trim()).expect("json");
+        let chain = v["chains"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .find(|c| c["line"] == line)
+            .cloned()
+            .unwrap_or_default();
+        assert_eq!(chain["verdict"], "needs context", "{out}");
+        assert_eq!(chain["reason"], "imposed", "{out}");
+        let message = chain["diagnostics"][0]["message"]
+            .as_str()
+            .unwrap_or_default();
+        assert!(
+            message.starts_with(&format!("needs context: the notes impose {lhs} = 0 here")),
+            "{message}"
+        );
+        // The prose's `v_G = \omega R` just after follows from it.
+        assert!(
+            v["chains"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .any(|c| c["line"] == line + 2
+                    && c["verdict"] == "verified"
+                    && c["from"] == serde_json::json!([line])),
+            "{out}"
+        );
+        assert_eq!(code, 1, "{out}");
+    }
+}
+
+#[test]
+fn a_value_the_prose_gives_is_suggested_as_the_comment_that_makes_a_chain_checkable() {
+    let (out, _, _) = lint(&["tests/lint/corpus/sections_carry.md"]);
+    assert!(
+        out.contains("sections_carry.md:51:4: needs context: this step brings in A, which nothing before it defines; the notes must give it; `<!-- rigor: let r = A -->` makes it checkable\n"),
+        "{out}"
+    );
+    let (out, _, _) = lint(&["--format", "json", "tests/lint/corpus/sections_carry.tex"]);
+    let v: serde_json::Value = serde_json::from_str(out.trim()).expect("json");
+    let chain = v["chains"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .find(|c| c["line"] == 38)
+        .cloned()
+        .unwrap_or_default();
+    assert_eq!(chain["comment"], "rigor: let h = 2", "{out}");
+    // The comment, added, does make it checkable: the chain is then verified.
+    let dir = std::env::temp_dir().join(format!("rigor-lint-value-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let text = std::fs::read_to_string("tests/lint/corpus/sections_carry.tex").expect("read");
+    let doc = dir.join("carry.tex");
+    std::fs::write(
+        &doc,
+        text.replace("\\section{Falling", "% rigor: let h = 2\n\\section{Falling"),
+    )
+    .expect("write");
+    let (out, _, _) = lint(&[doc.to_str().unwrap_or_default()]);
+    let _ = std::fs::remove_dir_all(&dir);
+    assert!(out.contains("carry.tex:39:3: verified"), "{out}");
 }
