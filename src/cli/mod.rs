@@ -657,16 +657,17 @@ pub fn lint(
     };
     let mut bad_input = false;
     let mut reports = Vec::new();
-    for d in docs {
+    // The documents are linted on every core (each on one thread), reported in order.
+    let linted = rigor::files::parallel(docs, |d| {
         let name = d.display().to_string();
-        match rigor::files::read(d, options.max_file_size) {
-            Ok(text) => reports.push(rigor::lint::lint(
-                &name,
-                &text,
-                DocKind::of(&name),
-                &options,
-            )),
-            Err(e) => {
+        rigor::files::read(d, options.max_file_size)
+            .map(|text| rigor::lint::lint(&name, &text, DocKind::of(&name), &options))
+            .map_err(|e| (name, e))
+    });
+    for r in linted {
+        match r {
+            Ok(report) => reports.push(report),
+            Err((name, e)) => {
                 errln!("error: cannot read {name}: {}", read_error(&e));
                 bad_input = true;
             }
