@@ -1,6 +1,6 @@
 //! The file system, for the command line, tests and benchmarks: a [`Resolver`] that
 //! reads imports beside the importing file (never outside the folder being checked),
-//! and the walk over files and folders, two files at a time. The checker itself
+//! and the walk over files and folders, one file per core at a time. The checker itself
 //! ([`crate::check_source`]) never touches the file system.
 
 use crate::check::{check_source, FileReport, ImportError, Options, Resolver, Source};
@@ -280,8 +280,9 @@ pub fn in_book_order(dir: &Path, mut reports: Vec<FileReport>) -> Result<Vec<Fil
     Ok(out)
 }
 
-/// Checks files and folders (folders: every `.deriv` file inside, recursively), two at a
-/// time; the reports come back in a stable order (sorted by path within each argument).
+/// Checks files and folders (folders: every `.deriv` file inside, recursively), one per
+/// core at a time; the reports come back in a stable order (sorted by path within each
+/// argument).
 /// A file's imports must stay inside the folder given (or the file's own folder).
 pub fn check_paths(paths: &[PathBuf], opts: &Options) -> Vec<FileReport> {
     let mut jobs: Vec<(PathBuf, PathBuf)> = Vec::new();
