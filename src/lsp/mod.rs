@@ -1,7 +1,7 @@
 //! `rigor lsp`: the Language Server Protocol over standard input and output, on the
 //! maintained `lsp-server` and `lsp-types` crates (as rust-analyzer is). A thin world
 //! around the one checker entry: every open document is checked on a thread of its own
-//! ([`world::check`]), so a slow document never holds up another's diagnostics; a newer
+//! (`world::check`), so a slow document never holds up another's diagnostics; a newer
 //! version of a document trips the flag of the check still running on the older one,
 //! whose clock then passes every deadline, and the document is checked again once that
 //! check has returned (edits that arrive meanwhile are checked once, at their newest).
