@@ -163,17 +163,7 @@ pub(super) fn over_prose_mass(
         let span = a.span.to(b.span);
         match reports.last_mut() {
             Some(r) if r.verdict == verdict => r.span = r.span.to(span),
-            _ => reports.push(ChainReport {
-                span,
-                verdict,
-                diagnostics: Vec::new(),
-                assuming: Vec::new(),
-                defines: None,
-                reason: None,
-                comment: None,
-                from: Vec::new(),
-                using: Vec::new(),
-            }),
+            _ => reports.push(ChainReport::new(span, verdict, Vec::new())),
         }
     }
     for r in &mut reports {

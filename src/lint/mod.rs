@@ -68,6 +68,24 @@ pub struct ChainReport {
     pub using: Vec<(String, usize)>,
 }
 
+impl ChainReport {
+    /// A chain with its verdict and diagnostics, and nothing assumed, defined, cited or
+    /// suggested (the other fields are set where they are known).
+    pub fn new(span: Span, verdict: Verdict, diagnostics: Vec<Diagnostic>) -> ChainReport {
+        ChainReport {
+            span,
+            verdict,
+            diagnostics,
+            assuming: Vec::new(),
+            defines: None,
+            reason: None,
+            comment: None,
+            from: Vec::new(),
+            using: Vec::new(),
+        }
+    }
+}
+
 /// Everything found in one document.
 #[derive(Clone, Debug, Default)]
 pub struct LintReport {
@@ -843,22 +861,13 @@ fn refuted(d: &Diagnostic) -> bool {
 
 /// The report of a chain that could not be written as a derivation.
 fn unwritten(p: &Placed) -> ChainReport {
-    ChainReport {
-        span: p.span,
-        verdict: Verdict::NeedsContext,
-        diagnostics: vec![Diagnostic::error(
-            Code::NotVerified,
-            "needs context: rigor reads this chain but cannot write it as a derivation, so it is not checked",
-            p.span,
-            "",
-        )],
-        assuming: Vec::new(),
-        defines: None,
-        reason: None,
-        comment: None,
-        from: Vec::new(),
-        using: Vec::new(),
-    }
+    let why = Diagnostic::error(
+        Code::NotVerified,
+        "needs context: rigor reads this chain but cannot write it as a derivation, so it is not checked",
+        p.span,
+        "",
+    );
+    ChainReport::new(p.span, Verdict::NeedsContext, vec![why])
 }
 
 /// The verdict on a placed chain, and for one that needs context, why.
@@ -894,35 +903,19 @@ fn verdict_on(checked: &FileReport, p: &Placed) -> ChainReport {
         (s, d)
     });
     if p.firm && !p.states && first_diags.iter().any(refuted) {
-        return ChainReport {
-            span: p.span,
-            verdict: Verdict::Failed,
-            diagnostics: first_diags,
-            assuming: Vec::new(),
-            defines: None,
-            reason: None,
-            comment: None,
-            from: Vec::new(),
-            using: Vec::new(),
-        };
+        return ChainReport::new(p.span, Verdict::Failed, first_diags);
     }
     // A verified chain says what its links assume (a division the signs do not show safe).
     let mut assuming = conditions(&first_statuses);
     assuming.extend(rest.iter().flat_map(|(s, _)| conditions(s)));
     let report = |verdict, diagnostics| ChainReport {
-        span: p.span,
         assuming: if verdict == Verdict::Verified {
             once(assuming.clone())
         } else {
             Vec::new()
         },
-        verdict,
-        diagnostics,
         defines: p.defines.clone(),
-        reason: None,
-        comment: None,
-        from: Vec::new(),
-        using: Vec::new(),
+        ..ChainReport::new(p.span, verdict, diagnostics)
     };
     if let Some((s, mut d)) = rest {
         later::imposed_or_false(p, &mut d);

@@ -23,15 +23,8 @@ pub(super) fn verified_tail(checked: &FileReport, p: &Placed) -> Option<ChainRep
     let j = statuses.iter().rposition(|s| !s.is_verified())?;
     let from = p.later.get(j)?.rhs;
     (j + 1 < statuses.len()).then(|| ChainReport {
-        span: Span::new(from, p.span.end),
-        verdict: Verdict::Verified,
-        diagnostics: Vec::new(),
         assuming: once(conditions(statuses.get(j + 1..).unwrap_or_default())),
-        defines: None,
-        reason: None,
-        comment: None,
-        from: Vec::new(),
-        using: Vec::new(),
+        ..ChainReport::new(Span::new(from, p.span.end), Verdict::Verified, Vec::new())
     })
 }
 
@@ -75,17 +68,7 @@ pub(super) fn verified_head(checked: &FileReport, p: &Placed) -> Option<(ChainRe
         None => (p.first_link.end, p.first_link.start),
         Some(i) => (p.later.get(i)?.span.end, p.later.get(i)?.rhs),
     };
-    let head = ChainReport {
-        span: Span::new(p.span.start, end),
-        verdict: Verdict::Verified,
-        diagnostics: Vec::new(),
-        assuming: Vec::new(),
-        defines: None,
-        reason: None,
-        comment: None,
-        from: Vec::new(),
-        using: Vec::new(),
-    };
+    let head = ChainReport::new(Span::new(p.span.start, end), Verdict::Verified, Vec::new());
     Some((head, from))
 }
 

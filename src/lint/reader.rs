@@ -282,15 +282,12 @@ fn read(
         Err(e) => e,
     };
     let unread = |span: Span, message: String| ChainReport {
-        span,
-        verdict: Verdict::NeedsContext,
-        diagnostics: vec![Diagnostic::error(Code::Syntax, message, span, "")],
-        assuming: Vec::new(),
-        defines: None,
         reason: Some(super::Reason::Unread),
-        comment: None,
-        from: Vec::new(),
-        using: Vec::new(),
+        ..ChainReport::new(
+            span,
+            Verdict::NeedsContext,
+            vec![Diagnostic::error(Code::Syntax, message, span, "")],
+        )
     };
     let after = e.span.end.saturating_sub(at);
     match extract::equals_after(rel, after) {
