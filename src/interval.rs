@@ -15,6 +15,8 @@ use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 use std::cmp::Ordering;
+use std::collections::HashMap;
+use std::sync::Mutex;
 
 /// Largest binary exponent (in absolute value) an endpoint may have;
 /// operations whose result would exceed it return `None`.
@@ -196,6 +198,13 @@ fn sqrt_bound(q: &BigRational, bits: u32, up: bool) -> Option<BigRational> {
 
 /// Rigorous bound on `a^n` for `a >= 0`, `n >= 1` via rounded binary powering.
 fn pow_bound(a: &BigRational, n: u64, bits: u32, up: bool) -> Option<BigRational> {
+    // A short fraction (the guard's points are) has a short exact power: rounded once,
+    // it is the tightest bound, and cheaper than rounding every square.
+    let size = a.numer().bits().max(a.denom().bits());
+    if size.saturating_mul(n) <= 2 * u64::from(bits) {
+        let n = u32::try_from(n).ok()?;
+        return round_frac(&a.numer().pow(n), &a.denom().pow(n), bits, up);
+    }
     let mut result = BigRational::one();
     let mut base = round(a, bits, up)?;
     let mut k = n;
@@ -702,6 +711,29 @@ fn taylor_sincos(r: &Interval, wp: Prec) -> Option<(Interval, Interval)> {
 
 /// Enclosures of `(sin q, cos q)` using reduction modulo `pi/2`.
 fn sincos_point(q: &BigRational, p: Prec) -> Option<(Interval, Interval)> {
+    type Known = HashMap<(BigRational, Prec), Option<(Interval, Interval)>>;
+    // The guard evaluates the same angles over and over (its points are short binary
+    // fractions): each enclosure is found once per process. The answer depends on
+    // nothing but the arguments, so a remembered one is the one it would compute.
+    static KNOWN: Mutex<Option<Known>> = Mutex::new(None);
+    const KEEP: usize = 4096;
+    let key = (q.clone(), p);
+    let lock = || KNOWN.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(known) = lock().as_ref().and_then(|k| k.get(&key).cloned()) {
+        return known;
+    }
+    let found = sincos_enclosure(q, p);
+    let mut k = lock();
+    let k = k.get_or_insert_with(HashMap::new);
+    if k.len() >= KEEP {
+        k.clear();
+    }
+    k.insert(key, found.clone());
+    found
+}
+
+/// [`sincos_point`], computed.
+fn sincos_enclosure(q: &BigRational, p: Prec) -> Option<(Interval, Interval)> {
     if q.abs() > rat(MAX_TRIG_ARG) {
         return None;
     }

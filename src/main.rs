@@ -5,6 +5,10 @@ use std::process::ExitCode;
 
 mod cli;
 
+#[cfg(not(target_arch = "wasm32"))]
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// rigor: an exact derivation and proof checker for engineering dynamics.
 #[derive(Parser)]
 #[command(name = "rigor", version, about, long_about = None)]

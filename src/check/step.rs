@@ -3,7 +3,7 @@
 //! for each relation. Explaining a failure lives in `explain.rs`, inequalities and
 //! `~=` in `relations.rs`.
 
-use super::elimination::{apply_steps, contradiction, eliminate, Elimination, Fact};
+use super::elimination::{apply_steps, eliminate, Elimination, Fact};
 use super::report::{Justification, Status};
 use super::walk::{unknown_atom, Checker, Known};
 use crate::clock::Deadline;
@@ -222,8 +222,8 @@ impl Checker<'_, '_> {
                 })
                 .collect()
         };
-        let used = after_where(&allowed);
-        let scope = after_where(&self.facts);
+        let used = distinct(after_where(&allowed));
+        let scope = distinct(after_where(&self.facts));
         let signs = &self.env.signs;
         let is_unknown = |x: AtomId| unknown_atom(&self.scope, x);
         let elim = if diff.is_zero() {
@@ -283,7 +283,11 @@ impl Checker<'_, '_> {
         if red.via.is_empty() {
             return Ok(());
         }
-        match contradiction(&red.used, &self.env.signs) {
+        let found = self
+            .consistent
+            .borrow_mut()
+            .check(&red.used, &self.env.signs);
+        match found {
             None => Ok(()),
             Some(c) => Err(Diagnostic::error(
                 Code::FalseFacts,
@@ -320,6 +324,22 @@ impl Checker<'_, '_> {
         };
         Err(self.not_equal(input, red, sides, &all_divs))
     }
+}
+
+/// The facts without repeats: a fact whose value is one before it, or its negation,
+/// states nothing new (notes state a relation, then use it as stated). The first is
+/// kept, so the facts are cited as before.
+fn distinct(facts: Vec<Fact>) -> Vec<Fact> {
+    let mut seen: HashSet<Rat> = HashSet::new();
+    let mut out = Vec::with_capacity(facts.len());
+    for f in facts {
+        if seen.contains(&f.value) || seen.contains(&f.value.neg()) {
+            continue;
+        }
+        seen.insert(f.value.clone());
+        out.push(f);
+    }
+    out
 }
 
 /// The work behind a link verified with the facts: the unknowns solved and the sides

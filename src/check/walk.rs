@@ -86,6 +86,10 @@ pub struct Checker<'l, 'o> {
     pub(super) conditions: Vec<Condition>,
     /// Definitions, bodies and time symbols as written, for the guard.
     pub(super) guard_env: crate::guard::GuardEnv,
+    /// Which divisors the facts force to zero, for the facts in scope now (`zeros.rs`).
+    pub(super) zero_memo: std::cell::RefCell<super::zeros::ZeroMemo>,
+    /// Fact sets already found free of contradiction (`zeros.rs`).
+    pub(super) consistent: std::cell::RefCell<super::zeros::Consistent>,
     /// Quantities declared `small`, with the order kept.
     pub(super) small: Vec<(String, u32)>,
     /// The labels `result` names (checked at the end of the file).
@@ -125,6 +129,8 @@ impl<'l, 'o> Checker<'l, 'o> {
             line_starts: Vec::new(),
             conditions: Vec::new(),
             guard_env: crate::guard::GuardEnv::default(),
+            zero_memo: Default::default(),
+            consistent: Default::default(),
             small: Vec::new(),
             results: Vec::new(),
             units: HashMap::new(),
@@ -533,8 +539,20 @@ impl<'l, 'o> Checker<'l, 'o> {
         if self.facts.len() == before || self.facts.len() > MAX_FACTS_CHECKED {
             return true;
         }
+        // A fact that is one already in scope (or its negation) adds nothing: notes state
+        // a relation they have just derived.
+        let (old, new) = self.facts.split_at(before);
+        let repeats = |k: &Known| {
+            let neg = k.fact.value.neg();
+            old.iter()
+                .any(|o| o.fact.value == k.fact.value || o.fact.value == neg)
+        };
+        if new.iter().all(repeats) {
+            return true;
+        }
         let values: Vec<Fact> = self.facts.iter().map(|k| k.fact.clone()).collect();
-        let why = match super::elimination::contradiction(&values, &self.env.signs) {
+        let found = self.consistent.borrow_mut().check(&values, &self.env.signs);
+        let why = match found {
             Some(why) => Some((why, "no real values satisfy the facts with this one")),
             None => self
                 .motion_forced_still(&values)

@@ -19,6 +19,7 @@ use super::elimination::{zero_by_facts, Fact};
 use crate::diag::Cited;
 use crate::normal::atom;
 use crate::normal::{Assumptions, Poly, Rat, Sign};
+use std::collections::HashMap;
 
 /// Nesting of square completions tried on one fact (one per atom completed).
 const DEPTH: usize = 6;
@@ -199,18 +200,117 @@ fn nonnegative_terms(p: &Poly, signs: &Assumptions) -> Vec<Rat> {
         .collect()
 }
 
+/// What [`forced_zero_in`] found under one set of facts and signs: the divisors of a
+/// file's links repeat (`m R^2`, then `m R`, both bringing `m` and `R`), and each answer
+/// costs an elimination. Only answers for exactly these facts (by value) and these
+/// signs are reused; any other facts or signs start it afresh.
+#[derive(Default)]
+pub struct ZeroMemo {
+    /// The facts' values and the signs the answers hold for.
+    facts: Vec<Rat>,
+    signs: Assumptions,
+    /// The facts' consequences, once found.
+    consequences: Option<Vec<Fact>>,
+    /// Whether a value is zero by the facts (`false`) or by the facts and their
+    /// consequences (`true`).
+    zero: HashMap<(Rat, bool), bool>,
+}
+
+impl ZeroMemo {
+    /// Forgets what was found unless it was found for these facts and signs.
+    fn under(&mut self, facts: &[Fact], signs: &Assumptions) {
+        let same = self.facts.len() == facts.len()
+            && self.facts.iter().zip(facts).all(|(a, f)| *a == f.value)
+            && self.signs == *signs;
+        if !same {
+            *self = ZeroMemo {
+                facts: facts.iter().map(|f| f.value.clone()).collect(),
+                signs: signs.clone(),
+                ..ZeroMemo::default()
+            };
+        }
+    }
+
+    /// `zero_by_facts` of `d` (a value and its negation are zero together).
+    fn zero(&mut self, d: &Rat, all: &[Fact], with: bool, signs: &Assumptions) -> bool {
+        let neg = d.neg();
+        let known = self
+            .zero
+            .get(&(d.clone(), with))
+            .or_else(|| self.zero.get(&(neg, with)));
+        if let Some(z) = known {
+            return *z;
+        }
+        let z = zero_by_facts(d, all, signs);
+        self.zero.insert((d.clone(), with), z);
+        z
+    }
+}
+
+/// The fact sets (their values without repeats, in order) that [`contradiction`] found
+/// no contradiction in, under the signs they were checked with: a link that uses the
+/// facts a given was just checked with needs no second look. Only "no contradiction"
+/// is kept; a contradiction is found again, so its message names its own facts.
+///
+/// [`contradiction`]: super::elimination::contradiction
+#[derive(Default)]
+pub struct Consistent {
+    signs: Assumptions,
+    sets: Vec<Vec<Rat>>,
+}
+
+impl Consistent {
+    /// How many sets are kept (the facts grow through a file; older sets recur rarely).
+    const KEEP: usize = 8;
+
+    /// Whether `facts` are free of contradiction (`None`) as [`contradiction`] finds,
+    /// or the contradiction.
+    ///
+    /// [`contradiction`]: super::elimination::contradiction
+    pub fn check(&mut self, facts: &[Fact], signs: &Assumptions) -> Option<crate::diag::Text> {
+        let mut values: Vec<Rat> = Vec::with_capacity(facts.len());
+        for f in facts {
+            if !values.iter().any(|v| *v == f.value || *v == f.value.neg()) {
+                values.push(f.value.clone());
+            }
+        }
+        if self.signs != *signs {
+            *self = Consistent {
+                signs: signs.clone(),
+                sets: Vec::new(),
+            };
+        }
+        if self.sets.contains(&values) {
+            return None;
+        }
+        let found = super::elimination::contradiction(facts, signs);
+        if found.is_none() {
+            if self.sets.len() >= Self::KEEP {
+                self.sets.remove(0);
+            }
+            self.sets.push(values);
+        }
+        found
+    }
+}
+
 /// Whether `d` is zero wherever the facts hold: by elimination with the facts and their
 /// consequences, for `d`, for its squarefree part, and for its square (which brings in
-/// `sin^2 + cos^2 = 1`).
-pub fn forced_zero(d: &Rat, facts: &[Fact], signs: &Assumptions) -> bool {
-    if zero_by_facts(d, facts, signs) {
+/// `sin^2 + cos^2 = 1`). What `memo` found under the same facts and signs is reused.
+pub fn forced_zero_in(d: &Rat, facts: &[Fact], signs: &Assumptions, memo: &mut ZeroMemo) -> bool {
+    memo.under(facts, signs);
+    if memo.zero(d, facts, false, signs) {
         return true;
     }
     if d.num().atoms().is_empty() || facts.is_empty() {
         return false;
     }
-    let mut all: Vec<Fact> = facts.to_vec();
-    all.extend(consequences(facts, signs));
+    let all: Vec<Fact> = {
+        let more = memo
+            .consequences
+            .get_or_insert_with(|| consequences(facts, signs));
+        facts.iter().chain(more.iter()).cloned().collect()
+    };
     let mut candidates: Vec<Rat> = vec![d.clone()];
     if affordable(d.num()) {
         if let Ok(parts) = crate::normal::gcd::squarefree(d.num()) {
@@ -225,7 +325,7 @@ pub fn forced_zero(d: &Rat, facts: &[Fact], signs: &Assumptions) -> bool {
     candidates.extend(squares);
     candidates
         .iter()
-        .any(|c| !c.num().atoms().is_empty() && zero_by_facts(c, &all, signs))
+        .any(|c| !c.num().atoms().is_empty() && memo.zero(c, &all, true, signs))
 }
 
 /// The sign of `r` from the declared signs, and where they cannot place it, from its

@@ -109,7 +109,7 @@ pub struct Range {
 }
 
 /// The declared signs of symbols, and the intervals of those declared in one.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Assumptions {
     signs: HashMap<AtomId, Sign>,
     ranges: HashMap<AtomId, Range>,
