@@ -560,8 +560,17 @@ impl Interval {
             let (s, c) = sincos_point(q, p)?;
             Some(if cos { c } else { s })
         };
-        let mut res = pick(&self.lo)?;
-        if self.lo != self.hi {
+        let half_width = self.width() / rat(2);
+        let mut res;
+        if self.lo != self.hi && qlt(&half_width, &two_pow(-32)) {
+            // A narrow enclosure (a value computed at the guard's precision): sine and
+            // cosine move by at most the distance moved, so the value at the midpoint
+            // widened by half the width holds every member. One evaluation, not two.
+            res = pick(&self.midpoint())?.widen(&half_width);
+        } else {
+            res = pick(&self.lo)?;
+        }
+        if self.lo != self.hi && !qlt(&half_width, &two_pow(-32)) {
             res = res.hull(&pick(&self.hi)?);
             // Include the extreme values if a critical point may lie inside.
             let wp = p.plus(8);

@@ -7,6 +7,8 @@ use crate::diag::{Cited, Text};
 use crate::normal::atom::{self, AtomId};
 use crate::normal::subst::{atom_depends_on, subst_atom};
 use crate::normal::{func, Assumptions, NormError, Poly, Rat, Sign};
+use std::cell::RefCell;
+use std::collections::{HashMap, HashSet};
 
 /// A fact `value = 0`, with the name it is cited by.
 #[derive(Clone, Debug)]
@@ -664,7 +666,18 @@ fn contradiction_in(facts: &[Fact], signs: &Assumptions, rounds: u32) -> Option<
             .cited(std::slice::from_ref(name))
             .and(" says a nonzero quantity is zero")
     };
-    let nonzero = |v: &Rat| super::zeros::definite_sign(v, signs).is_nonzero();
+    // A fact a substitution left unchanged is asked again in the next round: its sign
+    // and whether it solves are remembered by value.
+    let signed: RefCell<HashMap<Rat, bool>> = RefCell::default();
+    let nonzero = |v: &Rat| {
+        if let Some(known) = signed.borrow().get(v) {
+            return *known;
+        }
+        let s = super::zeros::definite_sign(v, signs).is_nonzero();
+        signed.borrow_mut().insert(v.clone(), s);
+        s
+    };
+    let mut hopeless = HashSet::new();
     let mut fs: Vec<Fact> = facts.to_vec();
     let mut solved: Vec<(AtomId, Rat, Cited)> = Vec::new();
     for _ in 0..=facts.len() {
@@ -672,7 +685,9 @@ fn contradiction_in(facts: &[Fact], signs: &Assumptions, rounds: u32) -> Option<
             return Some(says_zero(&f.name));
         }
         // Only a solution without a divisor.
-        let Some((i, u, value)) = first_solvable(&fs, signs, &|_| false, &|_, divides| !divides)
+        let no_divisor = |_, divides: bool| !divides;
+        let Some((i, u, value)) =
+            first_solvable(&fs, signs, (&|_| false, &no_divisor), &mut hopeless)
         else {
             break;
         };
@@ -733,13 +748,19 @@ fn contradiction_in(facts: &[Fact], signs: &Assumptions, rounds: u32) -> Option<
 /// atoms' order; never π), that the fact solves for as `allowed` says (`allowed(u,
 /// divides)`: whether solving for `u` may divide by something the signs do not show
 /// nonzero): the fact's index, the atom and its value.
+///
+/// `hopeless` holds facts (by value) already found to solve for nothing under the same
+/// `prefer` and `allowed`; it is added to.
 fn first_solvable(
     fs: &[Fact],
     signs: &Assumptions,
-    prefer: &dyn Fn(AtomId) -> bool,
-    allowed: &dyn Fn(AtomId, bool) -> bool,
+    (prefer, allowed): (&dyn Fn(AtomId) -> bool, &dyn Fn(AtomId, bool) -> bool),
+    hopeless: &mut HashSet<Rat>,
 ) -> Option<(usize, AtomId, Rat)> {
     for (i, f) in fs.iter().enumerate() {
+        if hopeless.contains(&f.value) {
+            continue;
+        }
         let mut atoms = f.value.num().atoms();
         atoms.sort_by(|a, b| {
             prefer(*b)
@@ -760,6 +781,7 @@ fn first_solvable(
                 }
             }
         }
+        hopeless.insert(f.value.clone());
     }
     None
 }
@@ -780,7 +802,9 @@ pub fn solve_for_point(
     loop {
         let allowed =
             |u: AtomId, divides: bool| atom::sym_str(u).is_some() && (!divides || is_unknown(u));
-        let Some((i, u, value)) = first_solvable(&fs, signs, is_unknown, &allowed) else {
+        let Some((i, u, value)) =
+            first_solvable(&fs, signs, (is_unknown, &allowed), &mut HashSet::new())
+        else {
             return (steps, fs);
         };
         let fact = fs.remove(i);

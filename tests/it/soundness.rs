@@ -382,3 +382,28 @@ proptest! {
         prop_assert!(holds || refuted, "false but not refuted:\n{src}\n{:?}", r.diagnostics);
     }
 }
+
+/// What the checker keeps between links (which divisors the facts force to zero, which
+/// fact sets are free of contradiction, facts stated twice) holds only for the facts it
+/// was found with: a given that changes the facts changes the answer.
+#[test]
+fn answers_kept_between_links_follow_the_facts() {
+    for c in [1, 2, 7] {
+        // The divisor m is free under the first given, and zero once k = c is given.
+        let src = format!(
+            "symbols m k\ngiven [f1] k = m + {c}\nclaim [c1] m k/m = k\ngiven [again] k = m + {c}\nclaim [c2] m k/m = k\ngiven [f2] k = {c}\nclaim [c3] m k/m = k\n"
+        );
+        let r = report(&src);
+        let s = statuses(&src);
+        assert!(s[0].is_verified() && s[1].is_verified(), "{src}: {s:?}");
+        assert_eq!(codes(&r, "E0305"), vec![7], "{src}: {:?}", r.diagnostics);
+        // A repeated given adds nothing; one that differs is checked against the rest.
+        let src = format!(
+            "symbols x y\ngiven [a] x = y + {c}\ngiven [b] y + {c} = x\nclaim [d] x - y = {c}\ngiven [e] x = y + {}\nclaim [f] x - y = {c}\n",
+            c + 1
+        );
+        let r = report(&src);
+        assert_eq!(codes(&r, "E0306"), vec![5], "{src}: {:?}", r.diagnostics);
+        assert!(statuses(&src)[0].is_verified(), "{src}");
+    }
+}
