@@ -10,6 +10,10 @@ use crate::normal::{func, Assumptions, NormError, Poly, Rat, Sign};
 use std::cell::RefCell;
 use std::collections::{HashMap, HashSet};
 
+/// Which atoms a fact is solved for first, and whether an atom may be solved for (given
+/// whether solving divides by a quantity the signs do not show nonzero).
+type Choice<'a> = (&'a dyn Fn(AtomId) -> bool, &'a dyn Fn(AtomId, bool) -> bool);
+
 /// A fact `value = 0`, with the name it is cited by.
 #[derive(Clone, Debug)]
 pub struct Fact {
@@ -754,7 +758,7 @@ fn contradiction_in(facts: &[Fact], signs: &Assumptions, rounds: u32) -> Option<
 fn first_solvable(
     fs: &[Fact],
     signs: &Assumptions,
-    (prefer, allowed): (&dyn Fn(AtomId) -> bool, &dyn Fn(AtomId, bool) -> bool),
+    (prefer, allowed): Choice<'_>,
     hopeless: &mut HashSet<Rat>,
 ) -> Option<(usize, AtomId, Rat)> {
     for (i, f) in fs.iter().enumerate() {

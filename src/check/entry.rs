@@ -38,6 +38,11 @@ pub struct Options {
     /// step and "verified".
     #[doc(hidden)]
     pub corrupt_for_tests: bool,
+    /// Stop at the first statement whose failure names a quantity declared with
+    /// `symbols` that the facts determine (`Mistake::DeclaredGiven`): the statements after
+    /// it are not checked. For a caller that checks the text again with that quantity
+    /// declared an unknown (`rigor lint`), the rest would be checked for nothing.
+    pub stop_at_determined_given: bool,
 }
 
 impl Default for Options {
@@ -50,6 +55,7 @@ impl Default for Options {
             max_file_size: 10_000_000,
             clock: crate::clock::system(),
             corrupt_for_tests: false,
+            stop_at_determined_given: false,
         }
     }
 }

@@ -153,6 +153,14 @@ impl<'l, 'o> Checker<'l, 'o> {
     }
 
     /// Checks every statement; returns the report and what the file exports.
+    /// Whether a failure so far names a `symbols` quantity the facts determine.
+    fn determined_given(&self) -> bool {
+        self.report
+            .diagnostics
+            .iter()
+            .any(|d| matches!(d.mistake, Some(crate::diag::Mistake::DeclaredGiven(_))))
+    }
+
     pub fn run(mut self, mut file: File) -> (FileReport, Exports) {
         self.line_starts = std::iter::once(0)
             .chain(self.report.source.match_indices('\n').map(|(i, _)| i + 1))
@@ -168,6 +176,9 @@ impl<'l, 'o> Checker<'l, 'o> {
                     );
                 }
                 self.statement(&st.kind, st.span);
+                if self.loader.opts.stop_at_determined_given && self.determined_given() {
+                    break;
+                }
             }
         }
         for l in std::mem::take(&mut self.results) {

@@ -473,6 +473,7 @@ pub fn check(
         file_budget: None,
         clock: rigor::clock::system(),
         corrupt_for_tests: false,
+        stop_at_determined_given: false,
     };
     let mut reports = rigor::files::check_paths(paths, &options);
     name_the_flags(&mut reports);

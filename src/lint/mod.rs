@@ -189,22 +189,32 @@ pub(super) struct Checked {
     parsed: Mutex<HashMap<String, bool>>,
 }
 
-/// Reports by the name they were checked under, then by the derivation's text.
-type Reports = HashMap<String, HashMap<String, Arc<FileReport>>>;
+/// Reports by the name they were checked under and whether the check stopped at a
+/// determined quantity, then by the derivation's text.
+type Reports = HashMap<(String, bool), HashMap<String, Arc<FileReport>>>;
 
 impl Checked {
     /// The report of `deriv` checked as `name`, checked now unless it was before.
     pub(super) fn report(&self, name: &str, deriv: &str, opts: &Options) -> Arc<FileReport> {
+        let key = (name.to_string(), opts.stop_at_determined_given);
         let known = lock(&self.reports)
-            .get(name)
+            .get(&key)
             .and_then(|m| m.get(deriv))
             .cloned();
         if let Some(r) = known {
             return r;
         }
         let r = Arc::new(check_source(name, deriv, opts, &MemoryResolver::new()));
-        lock(&self.reports)
-            .entry(name.to_string())
+        let mut reports = lock(&self.reports);
+        if key.1 && !stopped(&r) {
+            // It did not stop: it is the whole check.
+            reports
+                .entry((name.to_string(), false))
+                .or_default()
+                .insert(deriv.to_string(), r.clone());
+        }
+        reports
+            .entry(key)
             .or_default()
             .insert(deriv.to_string(), r.clone());
         r
@@ -390,12 +400,21 @@ impl Scope {
         }
         let mut solve = HashSet::new();
         let mut skip = HashSet::new();
-        for round in 0..ROUNDS {
+        // While names to solve for may still be found, a check stops at the first one:
+        // the scope is checked again with it, so the rest would be checked for nothing.
+        let mut finding = 0;
+        let finder = Options {
+            stop_at_determined_given: true,
+            ..opts.clone()
+        };
+        let mut round = 0;
+        while round < ROUNDS {
             let b = self.build(doc.text(), (&time, &solve, &skip), cache, carry);
             if b.placed.is_empty() {
                 return;
             }
-            let checked = cache.report(name, &b.deriv, opts);
+            let finds = finding < FINDING;
+            let checked = cache.report(name, &b.deriv, if finds { &finder } else { opts });
             let more: Vec<String> = checked
                 .diagnostics
                 .iter()
@@ -405,10 +424,17 @@ impl Scope {
                 })
                 .filter(|n| !b.known.contains(n) && !solve.contains(n))
                 .collect();
-            if !more.is_empty() && round < 2 {
+            if finds && !more.is_empty() {
                 solve.extend(more);
+                finding += 1;
                 continue;
             }
+            if finds && stopped(&checked) {
+                // It stopped at a name already solved for: check it all.
+                finding = FINDING;
+                continue;
+            }
+            round += 1;
             // Stated relations become premises only when they fit together: one that
             // contradicts those before it, or a mistake, is taken back and the scope
             // checked again without it (two slips must not make a third line follow).
@@ -417,7 +443,7 @@ impl Scope {
                 .filter(|k| !skip.contains(k))
                 .collect();
             if !unfit.is_empty() {
-                if round + 1 < ROUNDS {
+                if round < ROUNDS {
                     skip.extend(unfit);
                     continue;
                 }
@@ -444,9 +470,20 @@ impl Scope {
 /// to solve for, links not taken as stated.
 type Sets<'a> = (&'a HashSet<String>, &'a HashSet<String>, &'a HashSet<usize>);
 
-/// How many times a scope is checked at most (with names to solve for, then without
-/// the stated relations that do not fit).
+/// How many times a scope is checked at most without the stated relations that do not
+/// fit.
 const ROUNDS: usize = 6;
+
+/// How many times at most a scope is checked again with names the facts determine
+/// declared as unknowns (each such check stops at the first name it finds).
+const FINDING: usize = 4;
+
+/// Whether a check stopped early at a determined quantity (its report names one).
+fn stopped(r: &FileReport) -> bool {
+    r.diagnostics
+        .iter()
+        .any(|d| matches!(d.mistake, Some(Mistake::DeclaredGiven(_))))
+}
 
 /// Checks the chains of `doc`. Each heading starts a new scope: notes reuse letters
 /// from one section to the next (R a radius, then a reaction), so what one section

@@ -432,3 +432,43 @@ fn a_failed_link_carries_its_kind_of_mistake() {
         assert_eq!(rigor::mark::kind(d), *kind, "{src}: {d:?}");
     }
 }
+
+/// `stop_at_determined_given` (what `rigor lint` checks with while it looks for the
+/// quantities to solve for): the check stops at the statement whose failure names a
+/// `symbols` quantity the facts determine, and checks nothing after it; without it, the
+/// statements after it are checked.
+#[test]
+fn a_check_may_stop_where_the_facts_determine_a_given_quantity() {
+    let src = concat!(
+        "symbols m g L I_A\ntime theta\n",
+        "given $$ -mg\\frac{L}{2} = I_A \\ddot{\\theta} $$\n",
+        "given $$ I_A \\ddot{\\theta} = \\frac{mL^2}{3} \\ddot{\\theta} $$\n",
+        "symbols R\ntime y_G\n",
+        "given $$ R - mg = m \\ddot{y}_G $$\n",
+        "given $$ \\ddot{y}_G = \\ddot{\\theta} \\frac{L}{2} $$\n",
+        "claim $$ R = \\frac{mg}{2} $$\n",
+        "claim $$ g = 2 g $$\n",
+        "claim $$ L = L $$\n",
+    );
+    let determined = |r: &rigor::check::FileReport| {
+        r.diagnostics
+            .iter()
+            .filter(|d| matches!(d.mistake, Some(rigor::diag::Mistake::DeclaredGiven(_))))
+            .count()
+    };
+    let full = rigor::check_source(
+        "s.deriv",
+        src,
+        &crate::no_budget(),
+        &rigor::MemoryResolver::new(),
+    );
+    assert_eq!(determined(&full), 1, "{:?}", full.diagnostics);
+    assert_eq!(full.claims.len(), 3, "{:?}", full.claims);
+    let opts = rigor::Options {
+        stop_at_determined_given: true,
+        ..crate::no_budget()
+    };
+    let stopped = rigor::check_source("s.deriv", src, &opts, &rigor::MemoryResolver::new());
+    assert_eq!(determined(&stopped), 1, "{:?}", stopped.diagnostics);
+    assert_eq!(stopped.claims.len(), 2, "{:?}", stopped.claims);
+}
