@@ -221,21 +221,23 @@ fn monomial_gcd_by_evaluation(a: &Poly, b: &Poly) -> Option<Mono> {
     Mono::from_pairs(gm)
 }
 
-/// One atom's part in [`images`]: its inverse's powers, the image being built, and
-/// (terms containing it, the smallest exponent there, the sum of their values).
+/// One atom's part in [`images`]: where its image is in the shared buffer, and (terms
+/// containing it, the smallest exponent there, the sum of their values).
 struct Slot {
-    inv_pows: Vec<u64>,
-    image: Vec<u64>,
+    at: usize,
+    len: usize,
     count: usize,
     least: u32,
     with: u64,
 }
 
-/// The images of `p` in 𝔽ₚ[v] for each `v` of `vars` (ascending), every other atom set
-/// by `value` and `v`'s power in the monomial content divided out (`None` for a `v`
-/// whose leading coefficient vanishes there), and the exponents of `vars` in the
-/// monomial content; `None` altogether when a coefficient has no image. `degs` are
-/// `p`'s atoms with their degrees. One pass over the terms serves every `v`.
+/// The images of `p` in 𝔽ₚ[t] for each `v` of `vars` (ascending): every other atom set
+/// by `value`, `v` set to `value(v)·t` (a change of variable that changes neither the
+/// degree of a gcd nor whether a leading coefficient vanishes, and needs no inverse),
+/// and `t`'s power in the monomial content divided out; `None` for a `v` whose leading
+/// coefficient vanishes there. Also the exponents of `vars` in the monomial content;
+/// `None` altogether when a coefficient has no image. `degs` are `p`'s atoms with their
+/// degrees. One pass over the terms serves every `v`.
 fn images(
     p: &Poly,
     degs: &[(AtomId, u64)],
@@ -243,30 +245,39 @@ fn images(
     value: &dyn Fn(AtomId) -> u64,
 ) -> Option<(Vec<Option<Vec<u64>>>, Vec<u32>)> {
     const DIRECT: u64 = 64;
-    // Each atom of p: its value, that value's powers (to degree DIRECT; beyond, by
-    // squaring), and its slot when it is one of `vars`.
-    let mut atoms: Vec<(u64, Vec<u64>, Option<usize>)> = degs
-        .iter()
-        .map(|&(x, d)| (value(x), powers(value(x), d.min(DIRECT)), None))
-        .collect();
+    // Each atom of p: its value, where its powers start in `pows` (to degree DIRECT;
+    // beyond, by squaring) and how many, and its slot when it is one of `vars`.
+    let mut atoms: Vec<(u64, usize, usize, Option<usize>)> = Vec::with_capacity(degs.len());
+    let mut pows: Vec<u64> = Vec::new();
+    for &(x, d) in degs {
+        let val = value(x);
+        let at = pows.len();
+        let mut y = 1u64;
+        for _ in 0..=d.min(DIRECT) {
+            pows.push(y);
+            y = mulmod(y, val);
+        }
+        atoms.push((val, at, pows.len() - at, None));
+    }
     let mut slots = Vec::with_capacity(vars.len());
+    let mut buf: Vec<u64> = Vec::new();
     for (j, &v) in vars.iter().enumerate() {
         let pos = degs.binary_search_by_key(&v, |t| t.0).ok()?;
         let deg = degs.get(pos)?.1;
-        atoms.get_mut(pos)?.2 = Some(j);
-        let (inv_pows, image) = if deg > 100_000 {
-            (Vec::new(), Vec::new())
+        atoms.get_mut(pos)?.3 = Some(j);
+        let len = if deg > 100_000 {
+            0
         } else {
-            let len = usize::try_from(deg).ok()? + 1;
-            (powers(invmod(value(v))?, deg), vec![0; len])
+            usize::try_from(deg).ok()? + 1
         };
         slots.push(Slot {
-            inv_pows,
-            image,
+            at: buf.len(),
+            len,
             count: 0,
             least: u32::MAX,
             with: 0,
         });
+        buf.resize(buf.len() + len, 0);
     }
     // Where an atom of p is in `atoms`: a direct table over the ids in use when narrow.
     let lo = degs.first().map_or(0, |t| t.0.index());
@@ -291,55 +302,43 @@ fn images(
     for (m, q) in p.terms() {
         let mut w = q_mod_p(q, &mut inverses)?;
         for &(x, k) in m.pairs() {
-            let (val, pows, _) = atoms.get(locate(x)?)?;
-            let xk = match pows.get(k as usize) {
-                Some(&y) => y,
-                None => powmod(*val, u64::from(k)),
+            let &(val, at, len, _) = atoms.get(locate(x)?)?;
+            let xk = match (k as usize) < len {
+                true => *pows.get(at + k as usize)?,
+                false => powmod(val, u64::from(k)),
             };
             w = mulmod(w, xk);
         }
         total = (total + w) % P;
         for &(x, k) in m.pairs() {
-            let Some(s) = atoms.get(locate(x)?)?.2.and_then(|j| slots.get_mut(j)) else {
+            let Some(s) = atoms.get(locate(x)?)?.3.and_then(|j| slots.get_mut(j)) else {
                 continue;
             };
             s.count += 1;
             s.least = s.least.min(k);
             s.with = (s.with + w) % P;
-            if let (Some(&ik), Some(slot)) =
-                (s.inv_pows.get(k as usize), s.image.get_mut(k as usize))
-            {
-                *slot = (*slot + mulmod(w, ik)) % P;
+            if (k as usize) < s.len {
+                let slot = buf.get_mut(s.at + k as usize)?;
+                *slot = (*slot + w) % P;
             }
         }
     }
     let mut contents = Vec::with_capacity(slots.len());
     let mut out = Vec::with_capacity(slots.len());
-    for mut s in slots {
+    for s in slots {
         let c = if s.count == p.len() { s.least } else { 0 };
         contents.push(c);
-        if let Some(first) = s.image.first_mut() {
+        let image = buf.get_mut(s.at..s.at + s.len)?;
+        if let Some(first) = image.first_mut() {
             // The terms without v.
             *first = (*first + total + P - s.with) % P;
         }
-        let image = s
-            .image
+        let image = image
             .get(c as usize..)
             .filter(|i| i.last().is_some_and(|&l| l != 0));
         out.push(image.map(<[u64]>::to_vec));
     }
     Some((out, contents))
-}
-
-/// `1, x, x², …, x^d` modulo P.
-fn powers(x: u64, d: u64) -> Vec<u64> {
-    let mut out = Vec::with_capacity(usize::try_from(d).unwrap_or(0) + 1);
-    let mut y = 1u64;
-    for _ in 0..=d {
-        out.push(y);
-        y = mulmod(y, x);
-    }
-    out
 }
 
 /// The Mersenne prime 2⁶¹ − 1.
@@ -410,19 +409,20 @@ fn gcd_degree_mod_p(mut a: Vec<u64>, mut b: Vec<u64>) -> usize {
     }
     trim(&mut a);
     trim(&mut b);
-    while !b.is_empty() {
-        let Some(inv) = b.last().copied().and_then(invmod) else {
-            break;
-        };
-        while a.len() >= b.len() && !a.is_empty() {
+    // Pseudo-remainders (a ← lc(b)·a − lc(a)·tˢ·b): scaling by a nonzero constant keeps
+    // the gcd's degree and needs no inverse.
+    while let Some(&lb) = b.last() {
+        while a.len() >= b.len() {
             let Some(&la) = a.last() else {
                 break;
             };
-            let f = mulmod(la, inv);
             let shift = a.len() - b.len();
+            for x in a.iter_mut() {
+                *x = mulmod(*x, lb);
+            }
             for (i, c) in b.iter().enumerate() {
                 if let Some(slot) = a.get_mut(i + shift) {
-                    *slot = (*slot + P - mulmod(*c, f)) % P;
+                    *slot = (*slot + P - mulmod(*c, la)) % P;
                 }
             }
             a.pop();
