@@ -221,6 +221,10 @@ fn monomial_gcd_by_evaluation(a: &Poly, b: &Poly) -> Option<Mono> {
     Mono::from_pairs(gm)
 }
 
+/// What [`images`] finds: one image per atom (`None` where a leading coefficient
+/// vanished), and the atoms' exponents in the monomial content.
+type Images = (Vec<Option<Vec<u64>>>, Vec<u32>);
+
 /// One atom's part in [`images`]: where its image is in the shared buffer, and (terms
 /// containing it, the smallest exponent there, the sum of their values).
 struct Slot {
@@ -243,7 +247,7 @@ fn images(
     degs: &[(AtomId, u64)],
     vars: &[AtomId],
     value: &dyn Fn(AtomId) -> u64,
-) -> Option<(Vec<Option<Vec<u64>>>, Vec<u32>)> {
+) -> Option<Images> {
     const DIRECT: u64 = 64;
     // Each atom of p: its value, where its powers start in `pows` (to degree DIRECT;
     // beyond, by squaring) and how many, and its slot when it is one of `vars`.
