@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # Issue 34 item 4: `rigor check` of a folder of many handout files, on one core and on
-# two. The files are made from derivations/: copies of each handout, every copy with a
-# comment line of its own and, where that leaves the verdicts unchanged (checked once per
-# handout and symbol), one declared symbol renamed (`omega` → `omega_17`), so no two
-# files are the same text. Each configuration runs RUNS times, the two interleaved; the
-# script prints the median, min and max wall time, the CPU time (user + sys) of the
-# median run, and the peak RSS (GNU time, when installed). `taskset -c 0` pins the
-# process to one core, and rigor then starts one worker (it starts one per core it may
-# use, `std::thread::available_parallelism`).
+# two (cores 0 and 1). The files are made from derivations/: copies of each handout,
+# every copy with a comment line of its own (so no two files are the same text) and every
+# other copy, where that leaves the verdicts unchanged (checked once per handout and
+# symbol), with one declared symbol renamed (`omega` → `omega_17`). Each configuration
+# runs RUNS times, the two interleaved; the script prints the median, min and max wall
+# time, the CPU time (user + sys) of every run, and the largest peak RSS (GNU time).
+# `taskset -c 0` pins the process to one core, and rigor then starts one worker (one per
+# core it may use, `std::thread::available_parallelism`).
 #
 #   bench/check_many.sh [RIGOR_BINARY] [FILES] [RUNS]
 set -euo pipefail
@@ -15,6 +15,10 @@ cd "$(dirname "$0")/.."
 bin="${1:-${CARGO_TARGET_DIR:-target}/release/rigor}"
 files="${2:-1000}"
 runs="${3:-5}"
+if [ ! -x /usr/bin/time ] || ! command -v taskset >/dev/null; then
+  echo "check_many.sh needs GNU time (/usr/bin/time) and taskset" >&2
+  exit 1
+fi
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 
