@@ -7,6 +7,7 @@ use crate::check::{check_source, FileReport, ImportError, Options, Resolver, Sou
 use crate::diag::Code;
 use crate::diag::Diagnostic;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 /// Reads imports from disk: relative to the importing file, inside `root`.
@@ -208,22 +209,20 @@ pub fn collect_all(paths: &[PathBuf]) -> Result<Vec<(PathBuf, PathBuf)>, String>
     Ok(jobs)
 }
 
-/// `f` on every item, two (or as many as there are cores) at a time; results in order.
+/// `f` on every item, one worker per core (as many as `available_parallelism` allows:
+/// `taskset` or a container's CPU limit lowers it), two without that information; results
+/// in order. Workers take the next item from a shared counter as they finish one, so a
+/// slow item holds up one worker only, never a fixed share of the rest.
 pub fn parallel<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
     let results: Mutex<Vec<Option<R>>> = Mutex::new((0..items.len()).map(|_| None).collect());
-    let next = Mutex::new(0usize);
+    let next = AtomicUsize::new(0);
     let workers = std::thread::available_parallelism()
         .map_or(2, |n| n.get())
         .min(items.len().max(1));
     std::thread::scope(|s| {
         for _ in 0..workers {
             s.spawn(|| loop {
-                let i = {
-                    let mut n = next.lock().unwrap_or_else(|e| e.into_inner());
-                    let i = *n;
-                    *n += 1;
-                    i
-                };
+                let i = next.fetch_add(1, Ordering::Relaxed);
                 let Some(item) = items.get(i) else {
                     break;
                 };
@@ -241,6 +240,29 @@ pub fn parallel<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Ve
         .into_iter()
         .flatten()
         .collect()
+}
+
+/// [`parallel`] over files, the largest started first (a long file started last would
+/// leave the other cores idle while it finishes); results in the order of `jobs`.
+fn largest_first<R: Send>(
+    jobs: &[(PathBuf, PathBuf)],
+    f: impl Fn(&(PathBuf, PathBuf)) -> R + Sync,
+) -> Vec<R> {
+    let mut order: Vec<(u64, usize)> = jobs
+        .iter()
+        .enumerate()
+        .map(|(i, (path, _))| (std::fs::metadata(path).map_or(0, |m| m.len()), i))
+        .collect();
+    // Largest first; equal sizes in the order given.
+    order.sort_by_key(|&(size, i)| (std::cmp::Reverse(size), i));
+    let results = parallel(&order, |&(_, i)| jobs.get(i).map(&f));
+    let mut slots: Vec<Option<R>> = (0..jobs.len()).map(|_| None).collect();
+    for ((_, i), r) in order.into_iter().zip(results) {
+        if let Some(slot) = slots.get_mut(i) {
+            *slot = r;
+        }
+    }
+    slots.into_iter().flatten().collect()
 }
 
 /// The reports of a folder's files in the order of its `ORDER` file (one path per
@@ -306,7 +328,7 @@ pub fn check_paths(paths: &[PathBuf], opts: &Options) -> Vec<FileReport> {
             Ok(()) => {}
         }
     }
-    let results = parallel(&jobs, |(path, root)| check_file(path, root, opts));
+    let results = largest_first(&jobs, |(path, root)| check_file(path, root, opts));
     let mut out: Vec<FileReport> = Vec::new();
     let mut early = early.into_iter().peekable();
     for (i, r) in results.into_iter().enumerate() {

@@ -163,41 +163,43 @@ fn div_exact_packed(
     Ok(Some(Some(Poly::from_sorted_terms(terms))))
 }
 
-/// Proves `gcd(a, b)` constant by evaluation, when it is: for every atom `v` in both,
-/// the other atoms are set to values modulo the prime 2⁶¹ − 1 at which neither leading
-/// coefficient in `v` vanishes, and the gcd of the univariate images has degree 0. (If
-/// `G` divides both, its image divides both images and keeps its degree in `v`.) This
-/// only ever proves coprimality; `false` means "not shown", and the exact gcd runs.
-fn coprime_by_evaluation(a: &Poly, b: &Poly) -> bool {
-    let aa = a.atoms();
-    let mut pending: Vec<AtomId> = b
-        .atoms()
-        .into_iter()
-        .filter(|v| aa.binary_search(v).is_ok())
+/// `gcd(a, b)` when evaluation proves it a monomial: the monomial (the common part of
+/// the two monomial contents). For every atom `v` in both, the other atoms are set to
+/// values modulo the prime 2⁶¹ − 1 at which neither leading coefficient in `v`
+/// vanishes, and the univariate images, with `v`'s power in the monomial content
+/// divided out, have a gcd of degree 0. (If `G` divides both polynomials without their
+/// monomial contents, its image divides both images and keeps its degree in `v`.) This
+/// only ever proves; `None` means "not shown", and the exact gcd runs.
+fn monomial_gcd_by_evaluation(a: &Poly, b: &Poly) -> Option<Mono> {
+    let (da, db) = (super::pack::degrees(a), super::pack::degrees(b));
+    let vars: Vec<AtomId> = da
+        .iter()
+        .filter(|(v, _)| db.binary_search_by_key(v, |t| t.0).is_ok())
+        .map(|&(v, _)| v)
         .collect();
+    // The exponents of `vars` in the two monomial contents (the same at every point).
+    let mut contents: Option<(Vec<u32>, Vec<u32>)> = None;
+    let mut pending = vars.clone();
     for attempt in 0..3u64 {
-        if pending.is_empty() {
-            return true;
+        if pending.is_empty() && contents.is_some() {
+            break;
         }
         let value = |x: AtomId| -> u64 {
             let h = (u64::from(x.index()) + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15)
                 ^ attempt.wrapping_mul(0xD6E8_FEB8_6659_FD93);
             h % (P - 2) + 2
         };
-        // Every atom gets its value once; the image in v divides v's own factor back out.
-        let (Some(wa), Some(wb)) = (weights(a, &value), weights(b, &value)) else {
-            continue;
-        };
+        let (ia, ca) = images(a, &da, &pending, &value)?;
+        let (ib, cb) = images(b, &db, &pending, &value)?;
+        if contents.is_none() {
+            contents = Some((ca, cb));
+        }
         let mut unsettled = Vec::new();
-        for v in pending {
-            let Some(inv) = invmod(value(v)) else {
-                unsettled.push(v);
-                continue;
-            };
-            match (image_mod_p(a, &wa, v, inv), image_mod_p(b, &wb, v, inv)) {
+        for ((v, ua), ub) in pending.into_iter().zip(ia).zip(ib) {
+            match (ua, ub) {
                 (Some(ua), Some(ub)) => {
                     if gcd_degree_mod_p(ua, ub) != 0 {
-                        return false;
+                        return None;
                     }
                 }
                 // A leading coefficient vanished at this point: try another.
@@ -206,7 +208,141 @@ fn coprime_by_evaluation(a: &Poly, b: &Poly) -> bool {
         }
         pending = unsettled;
     }
-    pending.is_empty()
+    let (ca, cb) = contents?;
+    if !pending.is_empty() {
+        return None;
+    }
+    let gm = vars
+        .iter()
+        .zip(ca.iter().zip(&cb))
+        .map(|(&v, (&x, &y))| (v, x.min(y)))
+        .filter(|t| t.1 > 0)
+        .collect();
+    Mono::from_pairs(gm)
+}
+
+/// What [`images`] finds: one image per atom (`None` where a leading coefficient
+/// vanished), and the atoms' exponents in the monomial content.
+type Images = (Vec<Option<Vec<u64>>>, Vec<u32>);
+
+/// One atom's part in [`images`]: where its image is in the shared buffer, and (terms
+/// containing it, the smallest exponent there, the sum of their values).
+struct Slot {
+    at: usize,
+    len: usize,
+    count: usize,
+    least: u32,
+    with: u64,
+}
+
+/// The images of `p` in 𝔽ₚ[t] for each `v` of `vars` (ascending): every other atom set
+/// by `value`, `v` set to `value(v)·t` (a change of variable that changes neither the
+/// degree of a gcd nor whether a leading coefficient vanishes, and needs no inverse),
+/// and `t`'s power in the monomial content divided out; `None` for a `v` whose leading
+/// coefficient vanishes there. Also the exponents of `vars` in the monomial content;
+/// `None` altogether when a coefficient has no image. `degs` are `p`'s atoms with their
+/// degrees. One pass over the terms serves every `v`.
+fn images(
+    p: &Poly,
+    degs: &[(AtomId, u64)],
+    vars: &[AtomId],
+    value: &dyn Fn(AtomId) -> u64,
+) -> Option<Images> {
+    const DIRECT: u64 = 64;
+    // Each atom of p: its value, where its powers start in `pows` (to degree DIRECT;
+    // beyond, by squaring) and how many, and its slot when it is one of `vars`.
+    let mut atoms: Vec<(u64, usize, usize, Option<usize>)> = Vec::with_capacity(degs.len());
+    let mut pows: Vec<u64> = Vec::new();
+    for &(x, d) in degs {
+        let val = value(x);
+        let at = pows.len();
+        let mut y = 1u64;
+        for _ in 0..=d.min(DIRECT) {
+            pows.push(y);
+            y = mulmod(y, val);
+        }
+        atoms.push((val, at, pows.len() - at, None));
+    }
+    let mut slots = Vec::with_capacity(vars.len());
+    let mut buf: Vec<u64> = Vec::new();
+    for (j, &v) in vars.iter().enumerate() {
+        let pos = degs.binary_search_by_key(&v, |t| t.0).ok()?;
+        let deg = degs.get(pos)?.1;
+        atoms.get_mut(pos)?.3 = Some(j);
+        let len = if deg > 100_000 {
+            0
+        } else {
+            usize::try_from(deg).ok()? + 1
+        };
+        slots.push(Slot {
+            at: buf.len(),
+            len,
+            count: 0,
+            least: u32::MAX,
+            with: 0,
+        });
+        buf.resize(buf.len() + len, 0);
+    }
+    // Where an atom of p is in `atoms`: a direct table over the ids in use when narrow.
+    let lo = degs.first().map_or(0, |t| t.0.index());
+    let span = degs.last().map_or(0, |t| t.0.index() - lo) as usize;
+    let table: Vec<usize> = if span < 4096 {
+        let mut t = vec![usize::MAX; span + 1];
+        for (i, (x, _)) in degs.iter().enumerate() {
+            *t.get_mut((x.index() - lo) as usize)? = i;
+        }
+        t
+    } else {
+        Vec::new()
+    };
+    let locate = |x: AtomId| -> Option<usize> {
+        match table.get(x.index().checked_sub(lo)? as usize) {
+            Some(&i) => (i != usize::MAX).then_some(i),
+            None => degs.binary_search_by_key(&x, |t| t.0).ok(),
+        }
+    };
+    let mut inverses = Vec::new();
+    let mut total = 0u64;
+    for (m, q) in p.terms() {
+        let mut w = q_mod_p(q, &mut inverses)?;
+        for &(x, k) in m.pairs() {
+            let &(val, at, len, _) = atoms.get(locate(x)?)?;
+            let xk = match (k as usize) < len {
+                true => *pows.get(at + k as usize)?,
+                false => powmod(val, u64::from(k)),
+            };
+            w = mulmod(w, xk);
+        }
+        total = (total + w) % P;
+        for &(x, k) in m.pairs() {
+            let Some(s) = atoms.get(locate(x)?)?.3.and_then(|j| slots.get_mut(j)) else {
+                continue;
+            };
+            s.count += 1;
+            s.least = s.least.min(k);
+            s.with = (s.with + w) % P;
+            if (k as usize) < s.len {
+                let slot = buf.get_mut(s.at + k as usize)?;
+                *slot = (*slot + w) % P;
+            }
+        }
+    }
+    let mut contents = Vec::with_capacity(slots.len());
+    let mut out = Vec::with_capacity(slots.len());
+    for s in slots {
+        let c = if s.count == p.len() { s.least } else { 0 };
+        contents.push(c);
+        let image = buf.get_mut(s.at..s.at + s.len)?;
+        if let Some(first) = image.first_mut() {
+            // The terms without v.
+            *first = (*first + total + P - s.with) % P;
+        }
+        let image = image
+            .get(c as usize..)
+            .filter(|i| i.last().is_some_and(|&l| l != 0));
+        out.push(image.map(<[u64]>::to_vec));
+    }
+    Some((out, contents))
 }
 
 /// The Mersenne prime 2⁶¹ − 1.
@@ -268,53 +404,6 @@ fn q_mod_p(q: &Q, inverses: &mut Vec<(u64, u64)>) -> Option<u64> {
     Some(mulmod(n, invmod(d)?))
 }
 
-/// The image of `p` in 𝔽ₚ[v] with every other atom set by `value`, if its degree in `v`
-/// is kept.
-/// The value of every term of `p` modulo P with every atom set by `value`.
-fn weights(p: &Poly, value: &dyn Fn(AtomId) -> u64) -> Option<Vec<u64>> {
-    let mut cache: Vec<(AtomId, u64)> = Vec::new();
-    let mut inverses = Vec::new();
-    let mut out = Vec::with_capacity(p.len());
-    for (m, q) in p.terms() {
-        let mut t = q_mod_p(q, &mut inverses)?;
-        for &(x, k) in m.pairs() {
-            let base = match cache.iter().find(|c| c.0 == x) {
-                Some(c) => c.1,
-                None => {
-                    let val = value(x);
-                    cache.push((x, val));
-                    val
-                }
-            };
-            t = mulmod(t, powmod(base, u64::from(k)));
-        }
-        out.push(t);
-    }
-    Some(out)
-}
-
-/// The image of `p` in 𝔽ₚ[v] from its term values `w` (`inv` is the inverse of the
-/// value of `v`, whose powers are divided back out), if its degree in `v` is kept.
-fn image_mod_p(p: &Poly, w: &[u64], v: AtomId, inv: u64) -> Option<Vec<u64>> {
-    let deg = p.degree_in(v) as usize;
-    if deg > 100_000 {
-        return None;
-    }
-    let mut inv_pow = Vec::with_capacity(deg + 1);
-    let mut x = 1u64;
-    for _ in 0..=deg {
-        inv_pow.push(x);
-        x = mulmod(x, inv);
-    }
-    let mut out = vec![0u64; deg + 1];
-    for ((m, _), t) in p.terms().iter().zip(w) {
-        let e = m.exp(v) as usize;
-        let slot = out.get_mut(e)?;
-        *slot = (*slot + mulmod(*t, *inv_pow.get(e)?)) % P;
-    }
-    (*out.last()? != 0).then_some(out)
-}
-
 /// Degree of the gcd of two dense univariate polynomials over 𝔽ₚ (coefficients ascending).
 fn gcd_degree_mod_p(mut a: Vec<u64>, mut b: Vec<u64>) -> usize {
     fn trim(p: &mut Vec<u64>) {
@@ -324,19 +413,20 @@ fn gcd_degree_mod_p(mut a: Vec<u64>, mut b: Vec<u64>) -> usize {
     }
     trim(&mut a);
     trim(&mut b);
-    while !b.is_empty() {
-        let Some(inv) = b.last().copied().and_then(invmod) else {
-            break;
-        };
-        while a.len() >= b.len() && !a.is_empty() {
+    // Pseudo-remainders (a ← lc(b)·a − lc(a)·tˢ·b): scaling by a nonzero constant keeps
+    // the gcd's degree and needs no inverse.
+    while let Some(&lb) = b.last() {
+        while a.len() >= b.len() {
             let Some(&la) = a.last() else {
                 break;
             };
-            let f = mulmod(la, inv);
             let shift = a.len() - b.len();
+            for x in a.iter_mut() {
+                *x = mulmod(*x, lb);
+            }
             for (i, c) in b.iter().enumerate() {
                 if let Some(slot) = a.get_mut(i + shift) {
-                    *slot = (*slot + P - mulmod(*c, f)) % P;
+                    *slot = (*slot + P - mulmod(*c, la)) % P;
                 }
             }
             a.pop();
@@ -361,16 +451,16 @@ pub fn gcd(a: &Poly, b: &Poly) -> Result<Poly, Limit> {
     if a == b {
         return Ok(a.monic());
     }
+    if a.len() > 1 && b.len() > 1 {
+        if let Some(gm) = monomial_gcd_by_evaluation(a, b) {
+            return Ok(Poly::term(gm, Q::one()));
+        }
+    }
     let (ma, mb) = (a.mono_content(), b.mono_content());
     let gm = ma.gcd(&mb);
     let a1 = a.div_mono(&ma).unwrap_or_else(|| a.clone());
     let b1 = b.div_mono(&mb).unwrap_or_else(|| b.clone());
-    let g = if a1.len() > 1 && b1.len() > 1 && coprime_by_evaluation(&a1, &b1) {
-        Poly::one()
-    } else {
-        gcd_nomono(&a1, &b1)?
-    };
-    Ok(g.mul_term(&gm, &Q::one())?.monic())
+    Ok(gcd_nomono(&a1, &b1)?.mul_term(&gm, &Q::one())?.monic())
 }
 
 fn gcd_nomono(a: &Poly, b: &Poly) -> Result<Poly, Limit> {
@@ -510,10 +600,11 @@ pub fn squarefree(p: &Poly) -> Result<Vec<(Poly, u32)>, Limit> {
 
 #[cfg(test)]
 mod tests {
-    use super::{div_exact, mulmod, P};
+    use super::{div_exact, gcd_nomono, monomial_gcd_by_evaluation, mulmod, P};
     use crate::normal::mono::Mono;
     use crate::normal::poly::{Poly, Q};
     use num_bigint::BigInt;
+    use num_traits::One;
     use proptest::prelude::*;
 
     fn poly() -> impl Strategy<Value = Poly> {
@@ -550,6 +641,37 @@ mod tests {
             let abr = ab.add(&r);
             if let Ok(Some(q)) = div_exact(&abr, &b) {
                 prop_assert_eq!(q.mul(&b).unwrap_or_else(|_| Poly::zero()), abr);
+            }
+        }
+    }
+
+    proptest! {
+        /// What evaluation proves is what the remainder sequence finds: the monomial
+        /// gcd when it proves one, and never a proof when the two share a factor
+        /// that is not a monomial.
+        #[test]
+        fn evaluation_agrees_with_the_remainder_sequence(a in poly(), b in poly(), c in poly()) {
+            let slow = |a: &Poly, b: &Poly| -> Result<Poly, crate::normal::Limit> {
+                let (ma, mb) = (a.mono_content(), b.mono_content());
+                let a1 = a.div_mono(&ma).unwrap_or_else(|| a.clone());
+                let b1 = b.div_mono(&mb).unwrap_or_else(|| b.clone());
+                Ok(gcd_nomono(&a1, &b1)?.mul_term(&ma.gcd(&mb), &Q::one())?.monic())
+            };
+            let ok = |r: Result<Poly, crate::normal::Limit>| r.unwrap_or_else(|_| Poly::zero());
+            let (ac, bc) = (ok(a.mul(&c)), ok(b.mul(&c)));
+            for (x, y) in [(&a, &b), (&ac, &bc)] {
+                if x.len() < 2 || y.len() < 2 {
+                    continue;
+                }
+                let want = ok(slow(x, y));
+                match monomial_gcd_by_evaluation(x, y) {
+                    Some(gm) => prop_assert_eq!(Poly::term(gm, Q::one()), want),
+                    None => prop_assert!(want.len() > 1 || x.len() < 2, "not proved: {}", want.len()),
+                }
+            }
+            // A common factor that is not a monomial is never proved away.
+            if c.len() > 1 && ac.len() > 1 && bc.len() > 1 {
+                prop_assert!(monomial_gcd_by_evaluation(&ac, &bc).is_none());
             }
         }
     }

@@ -1,6 +1,7 @@
-//! Square linear systems over polynomials by Cramer's rule, one fraction-free (Bareiss)
-//! determinant per numerator, and gcd-reduced results: `x_i = num_i / det`, each in
-//! lowest terms.
+//! Square linear systems over polynomials by Cramer's rule with fraction-free (Bareiss)
+//! determinants, and gcd-reduced results: `x_i = num_i / det`, each in lowest terms. On
+//! packed polynomials one elimination of `[A | b]` serves every numerator
+//! (`packed_determinants`).
 //!
 //! The checker does not use this solver (it eliminates fact by fact, `check/elimination.rs`);
 //! it is the library's solver and the one the benchmarks time.
@@ -132,14 +133,15 @@ pub fn solve(a: &[Vec<Rat>], b: &[Rat]) -> Result<Vec<Rat>, LinearError> {
     if det.is_zero() {
         return Err(LinearError::Singular);
     }
+    // x_i = y_i / c_i = num_i / (det · c_i): one canonical form, one gcd.
     let mut out = Vec::with_capacity(n);
     for (num, c) in nums.into_iter().zip(col_factor) {
-        let y = Rat::new(num, det.clone())?;
-        out.push(if c.is_one() {
-            y
+        let den = if c.is_one() {
+            det.clone()
         } else {
-            y.div(&Rat::poly(Poly::term(c, Q::one()))?)?
-        });
+            det.mul_term(&c, &Q::one())?
+        };
+        out.push(Rat::new(num, den)?);
     }
     Ok(out)
 }
@@ -168,29 +170,72 @@ fn columns<T: Clone>(m: &[Vec<T>], n: usize, i: Option<usize>) -> (Vec<Vec<T>>, 
 /// `det A` and Cramer's numerators on packed integer polynomials ([`packed`]), `None`
 /// when the matrix does not pack or an entry outgrows the packed form (the general
 /// path then runs). A singular `A` gives a zero determinant.
+///
+/// One elimination of `[A | b]` serves them all: after `k` steps, an entry of column
+/// `j` depends only on the columns before `k` and on column `j`, so the state of the
+/// rows from `k` on, without column `k`, is the state the elimination for the numerator
+/// of `x_k` (columns `0..k`, then those after `k`, then `b`) reaches after its own `k`
+/// steps. That numerator takes it from there; only its last `n − k` steps are its own.
 fn packed_determinants(m: &[Vec<Poly>], n: usize) -> Option<(Poly, Vec<Poly>)> {
     let ring = packed::Ring::new(m)?;
-    let pm = m
+    let mut m = m
         .iter()
         .map(|r| r.iter().map(|e| ring.pack(e)).collect::<Option<Vec<_>>>())
         .collect::<Option<Vec<_>>>()?;
-    let det = determinant_packed(&ring, columns(&pm, n, None))?;
-    if det.is_empty() {
-        return Some((Poly::zero(), Vec::new()));
+    let mut prev: packed::P = vec![(0, 1)];
+    let mut negate = false;
+    let mut nums = Vec::with_capacity(n);
+    for k in 0..n {
+        // The numerator of x_k: moving column k past the n − 1 − k after it.
+        let rest: Vec<Vec<packed::P>> = m.iter().skip(k).map(|r| r[k + 1..].to_vec()).collect();
+        let sign = negate != ((n - 1 - k) % 2 == 1);
+        nums.push(ring.unpack(&determinant_packed(&ring, (rest, sign), prev.clone())?));
+        let Some(p) = pivot_row(&m, k, |e: &packed::P| e.len()) else {
+            return Some((Poly::zero(), Vec::new()));
+        };
+        if p != k {
+            m.swap(k, p);
+            negate = !negate;
+        }
+        bareiss_step_packed(&ring, &mut m, k, &prev)?;
+        prev = std::mem::take(&mut m[k][k]);
     }
-    let nums = (0..n)
-        .map(|i| determinant_packed(&ring, columns(&pm, n, Some(i))).map(|p| ring.unpack(&p)))
-        .collect::<Option<Vec<Poly>>>()?;
-    Some((ring.unpack(&det), nums))
+    if negate {
+        for t in &mut prev {
+            t.1 = t.1.checked_neg()?;
+        }
+    }
+    Some((ring.unpack(&prev), nums))
 }
 
-/// [`determinant`] on packed polynomials.
+/// Step `k` of Bareiss elimination on packed polynomials: every entry right of and
+/// below the pivot `(k, k)` becomes `(pivot·e − left·up) / prev`; column `k` below the
+/// pivot becomes zero.
+fn bareiss_step_packed(
+    ring: &packed::Ring,
+    m: &mut [Vec<packed::P>],
+    k: usize,
+    prev: &packed::P,
+) -> Option<()> {
+    let (top, below) = m.split_at_mut(k + 1);
+    let pivot_row = top.last()?;
+    for row in below {
+        for j in k + 1..row.len() {
+            row[j] = ring.bareiss_entry(&pivot_row[k], &row[j], &row[k], &pivot_row[j], prev)?;
+        }
+        row[k] = Vec::new();
+    }
+    Some(())
+}
+
+/// [`determinant`] on packed polynomials, continuing an elimination whose last pivot
+/// was `prev` (`1` for a fresh one).
 fn determinant_packed(
     ring: &packed::Ring,
     (mut m, negate): (Vec<Vec<packed::P>>, bool),
+    mut prev: packed::P,
 ) -> Option<packed::P> {
     let n = m.len();
-    let mut prev: packed::P = vec![(0, 1)];
     let mut negate = negate;
     for k in 0..n {
         let Some(p) = pivot_row(&m, k, |e: &packed::P| e.len()) else {
@@ -200,12 +245,7 @@ fn determinant_packed(
             m.swap(k, p);
             negate = !negate;
         }
-        for i in k + 1..n {
-            for j in k + 1..n {
-                m[i][j] = ring.bareiss_entry(&m[k][k], &m[i][j], &m[i][k], &m[k][j], &prev)?;
-            }
-            m[i][k] = Vec::new();
-        }
+        bareiss_step_packed(ring, &mut m, k, &prev)?;
         prev = std::mem::take(&mut m[k][k]);
     }
     if negate {

@@ -12,12 +12,11 @@
 use crate::normal::limits::{check_deadline, max_terms};
 use crate::normal::mono::Mono;
 use crate::normal::pack::{degrees, Packing};
-use crate::normal::poly::FxBuild;
 use crate::normal::{Poly, Q};
 use num_bigint::BigInt;
 use num_traits::{One, ToPrimitive};
 use std::collections::btree_map::Entry;
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 
 /// A polynomial: `(packed monomial, coefficient)`, strictly ascending, no zero.
 pub(super) type P = Vec<(u128, i128)>;
@@ -27,6 +26,9 @@ pub(super) struct Ring {
     pk: Packing,
     /// Each field holds the degree bound of its atom: the exponent limit of a quotient.
     limit: u128,
+    /// The lowest bit of every field: a subtraction that borrows into one of these bits
+    /// took a larger exponent from a smaller one in the field below.
+    low: u128,
 }
 
 impl Ring {
@@ -59,7 +61,29 @@ impl Ring {
             .map(|(&a, &d)| Some((a, u32::try_from(d).ok()?)))
             .collect::<Option<Vec<_>>>()?;
         let limit = pk.pack(&Mono::from_pairs(limit)?)?;
-        Some(Ring { pk, limit })
+        let mut low = 0u128;
+        for &a in bound.keys() {
+            low |= pk.pack(&Mono::atom(a, 1))?;
+        }
+        Some(Ring { pk, limit, low })
+    }
+
+    /// The monomial `a / b` when `b` divides `a` and every exponent of the quotient is
+    /// within the bound: two word subtractions, whose borrows between fields show a
+    /// field that went negative (SWAR). Without a borrow out of any field the
+    /// difference of the words is the difference of every field; a borrow out of the
+    /// highest field makes the subtraction itself overflow.
+    fn div_mono(&self, a: u128, b: u128) -> Option<u128> {
+        let q = a.checked_sub(b)?;
+        // Bit i of a ^ b ^ (a − b) is the borrow into bit i.
+        if (a ^ b ^ q) & self.low != 0 {
+            return None;
+        }
+        let room = self.limit.checked_sub(q)?;
+        if (self.limit ^ q ^ room) & self.low != 0 {
+            return None;
+        }
+        Some(q)
     }
 
     /// `p` in packed form, `None` if a coefficient is not an integer of `i128`.
@@ -107,14 +131,14 @@ impl Ring {
                 .map(|&(m, c)| {
                     // checked: i128::MIN / −1 overflows.
                     (c.checked_rem(cb)? == 0).then_some(())?;
-                    Some((self.pk.div(m, mb, self.limit)?, c.checked_div(cb)?))
+                    Some((self.div_mono(m, mb)?, c.checked_div(cb)?))
                 })
                 .collect();
         }
         let mut r: BTreeMap<u128, i128> = a.iter().copied().collect();
         let mut q: P = Vec::new();
         while let Some((mr, cr)) = r.pop_last() {
-            let m = self.pk.div(mr, mb, self.limit)?;
+            let m = self.div_mono(mr, mb)?;
             if cr.checked_rem(cb)? != 0 {
                 return None;
             }
@@ -147,32 +171,77 @@ impl Ring {
 }
 
 /// The product, `None` on overflow or past the term limit.
+///
+/// Each term of the shorter factor times the longer one is a sorted list; the lists
+/// are added pairwise, like the runs of a bottom-up merge sort (a stack in which two
+/// sums of the same number of lists merge), so the result comes out sorted with
+/// `O(N log k)` comparisons and no hashing (`N` products, `k` lists).
 fn mul(a: &P, b: &P) -> Option<P> {
     if a.is_empty() || b.is_empty() {
         return Some(Vec::new());
     }
     let (small, big) = if a.len() <= b.len() { (a, b) } else { (b, a) };
-    if let [(m, c)] = small.as_slice() {
+    // One bound for every product: when the largest coefficients' product fits, none
+    // of the term products is checked again.
+    let big_max = big.iter().map(|t| t.1.unsigned_abs()).max()?;
+    let small_max = small.iter().map(|t| t.1.unsigned_abs()).max()?;
+    let fits = big_max
+        .checked_mul(small_max)
+        .is_some_and(|p| p <= i128::MAX as u128);
+    let shifted = |&(m, c): &(u128, i128)| -> Option<P> {
         // The fields hold the sum of two bounded degrees: no carry, order kept.
-        return big
-            .iter()
-            .map(|&(k, d)| Some((k + m, d.checked_mul(*c)?)))
-            .collect();
-    }
-    let mut acc: HashMap<u128, i128, FxBuild> =
-        HashMap::with_capacity_and_hasher((small.len() * big.len()).min(1 << 16), FxBuild);
-    for &(x, c1) in small {
-        for &(y, c2) in big {
-            let slot = acc.entry(x + y).or_insert(0);
-            *slot = slot.checked_add(c1.checked_mul(c2)?)?;
+        if fits {
+            return Some(big.iter().map(|&(k, d)| (k + m, d * c)).collect());
         }
-        if acc.len() > max_terms() || check_deadline().is_err() {
+        big.iter()
+            .map(|&(k, d)| Some((k + m, d.checked_mul(c)?)))
+            .collect()
+    };
+    // (number of lists summed, their sum)
+    let mut stack: Vec<(usize, P)> = Vec::new();
+    for t in small {
+        let mut run = (1usize, shifted(t)?);
+        while stack.last().is_some_and(|top| top.0 == run.0) {
+            let top = stack.pop()?;
+            run = (top.0 + run.0, add(&top.1, &run.1)?);
+            if run.1.len() > max_terms() || check_deadline().is_err() {
+                return None;
+            }
+        }
+        stack.push(run);
+    }
+    let mut out = stack.pop()?.1;
+    while let Some(top) = stack.pop() {
+        out = add(&top.1, &out)?;
+        if out.len() > max_terms() {
             return None;
         }
     }
-    let mut v: P = acc.into_iter().filter(|t| t.1 != 0).collect();
-    v.sort_unstable_by_key(|t| t.0);
-    Some(v)
+    Some(out)
+}
+
+/// `a + b`, `None` on overflow.
+fn add(mut a: &[(u128, i128)], mut b: &[(u128, i128)]) -> Option<P> {
+    let mut out = Vec::with_capacity(a.len() + b.len());
+    while let ([x, ra @ ..], [y, rb @ ..]) = (a, b) {
+        if x.0 < y.0 {
+            out.push(*x);
+            a = ra;
+        } else if x.0 > y.0 {
+            out.push(*y);
+            b = rb;
+        } else {
+            let c = x.1.checked_add(y.1)?;
+            if c != 0 {
+                out.push((x.0, c));
+            }
+            a = ra;
+            b = rb;
+        }
+    }
+    out.extend_from_slice(a);
+    out.extend_from_slice(b);
+    Some(out)
 }
 
 /// `a − b`, `None` on overflow.
@@ -205,4 +274,94 @@ fn sub(a: &P, b: &P) -> Option<P> {
         }
     }
     Some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::normal::AtomId;
+    use proptest::prelude::*;
+
+    /// A one-row matrix whose atoms 0–5 have degree bounds 1–6: fields of several widths.
+    fn ring() -> Ring {
+        let row: Vec<Poly> = (0..6u32)
+            .filter_map(|a| {
+                let m = Mono::from_pairs(vec![(AtomId::from_index(a), a + 1)])?;
+                Some(Poly::term(m, Q::one()))
+            })
+            .collect();
+        match Ring::new(&[row]) {
+            Some(r) => r,
+            None => panic!("six small atoms pack"),
+        }
+    }
+
+    /// Exponents that fit the fields of [`ring`]: up to twice each bound.
+    fn any_mono() -> impl Strategy<Value = Vec<u32>> {
+        (0u32..=2, 0u32..=4, 0u32..=6, 0u32..=8, 0u32..=10, 0u32..=12)
+            .prop_map(|(a, b, c, d, e, f)| vec![a, b, c, d, e, f])
+    }
+
+    fn mono(e: &[u32]) -> Option<Mono> {
+        let pairs = e
+            .iter()
+            .enumerate()
+            .map(|(a, &k)| (AtomId::from_index(a as u32), k))
+            .filter(|t| t.1 > 0)
+            .collect();
+        Mono::from_pairs(pairs)
+    }
+
+    proptest! {
+        /// The word-wide quotient is the field-by-field one: `Some` exactly when every
+        /// exponent of `b` is at most `a`'s and the difference is within the bound.
+        #[test]
+        fn word_division_is_field_division(a in any_mono(), b in any_mono()) {
+            let r = ring();
+            let (Some(ma), Some(mb)) = (mono(&a), mono(&b)) else {
+                return Err(TestCaseError::fail("monomials"));
+            };
+            let (Some(pa), Some(pb)) = (r.pk.pack(&ma), r.pk.pack(&mb)) else {
+                return Err(TestCaseError::fail("the exponents fit"));
+            };
+            let want = a
+                .iter()
+                .zip(&b)
+                .enumerate()
+                .all(|(i, (&x, &y))| y <= x && x - y <= i as u32 + 1);
+            let got = r.div_mono(pa, pb);
+            prop_assert_eq!(got.is_some(), want);
+            if let Some(q) = got {
+                let diff: Vec<u32> = a.iter().zip(&b).map(|(x, y)| x - y).collect();
+                prop_assert_eq!(Some(r.pk.unpack(q)), mono(&diff));
+            }
+        }
+
+        /// The merged product is the product of [`Poly`].
+        #[test]
+        fn product_by_merges_is_the_product(
+            a in proptest::collection::vec((any_mono(), -50i128..50), 0..12),
+            b in proptest::collection::vec((any_mono(), -50i128..50), 0..12),
+        ) {
+            let r = ring();
+            let poly = |t: &[(Vec<u32>, i128)]| -> Poly {
+                Poly::from_terms(
+                    t.iter()
+                        .filter_map(|(e, c)| {
+                            let e: Vec<u32> = e.iter().enumerate().map(|(i, &k)| k.min(i as u32 + 1)).collect();
+                            Some((mono(&e)?, Q::from_integer(BigInt::from(*c))))
+                        })
+                        .collect(),
+                )
+            };
+            let (pa, pb) = (poly(&a), poly(&b));
+            let (Some(ka), Some(kb)) = (r.pack(&pa), r.pack(&pb)) else {
+                return Err(TestCaseError::fail("bounded monomials pack"));
+            };
+            let Some(prod) = mul(&ka, &kb) else {
+                return Err(TestCaseError::fail("small products fit"));
+            };
+            prop_assert_eq!(Ok(r.unpack(&prod)), pa.mul(&pb));
+        }
+    }
 }
