@@ -158,9 +158,26 @@ fn math(text: String, start: usize, inline: bool) -> Piece {
 /// or HTML: `\[…\]`, `\(…\)` and display environments written bare.
 fn mathjax(doc: &str, covered: &[std::ops::Range<usize>]) -> Vec<(usize, Piece)> {
     let mut out = Vec::new();
+    // The covered ranges sorted and merged, so that each backslash finds its range by
+    // binary search (a document of many displays stays linear).
+    let mut merged: Vec<std::ops::Range<usize>> = covered.to_vec();
+    merged.sort_by_key(|r| r.start);
+    let mut disjoint: Vec<std::ops::Range<usize>> = Vec::with_capacity(merged.len());
+    for r in merged {
+        match disjoint.last_mut() {
+            Some(last) if r.start <= last.end => last.end = last.end.max(r.end),
+            _ => disjoint.push(r),
+        }
+    }
+    let covering = |k: usize| {
+        let n = disjoint.partition_point(|r| r.start <= k);
+        n.checked_sub(1)
+            .and_then(|j| disjoint.get(j))
+            .filter(|r| r.contains(&k))
+    };
     let mut i = 0;
     while let Some(k) = doc[i..].find('\\').map(|k| k + i) {
-        if let Some(r) = covered.iter().find(|r| r.contains(&k)) {
+        if let Some(r) = covering(k) {
             i = r.end.max(k + 1);
             continue;
         }
