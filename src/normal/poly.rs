@@ -97,17 +97,17 @@ impl Poly {
         if !self.contains(x) {
             return Some(self.clone());
         }
+        if self.contains(a) {
+            return None;
+        }
         let mut terms: Vec<(Mono, Q)> = Vec::with_capacity(self.terms.len());
         for (m, q) in &self.terms {
-            let pairs = m
-                .pairs()
-                .iter()
-                .map(|&(b, e)| (if b == x { a } else { b }, e))
-                .collect();
-            terms.push((Mono::from_pairs(pairs)?, q.clone()));
+            terms.push((m.renamed(x, a), q.clone()));
         }
         // Distinct monomials stay distinct (a is new): sorting restores the order.
-        terms.sort_unstable_by(|s, t| s.0.cmp(&t.0));
+        if !terms.is_sorted_by(|s, t| s.0 < t.0) {
+            terms.sort_unstable_by(|s, t| s.0.cmp(&t.0));
+        }
         Some(Poly { terms })
     }
 

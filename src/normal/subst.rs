@@ -230,14 +230,69 @@ pub fn rebuild_under(r: &Rat, x: AtomId, s: &Assumptions) -> Result<Rat, NormErr
 
 /// `r` with atom `x` replaced by `v`.
 pub fn subst_atom(r: &Rat, x: AtomId, v: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
-    if !depends_on(r, x) {
+    let atoms = r.atoms();
+    // Whether `x` occurs only as itself, never inside another atom's arguments.
+    let only_itself = atoms.iter().all(|&b| b == x || !atom_depends_on(b, x));
+    if only_itself && atoms.binary_search(&x).is_err() {
         return Ok(r.clone());
     }
-    if let Some(renamed) = v.as_atom().and_then(|a| r.rename_symbol(x, a)) {
-        return Ok(renamed);
+    if only_itself {
+        if let Some(renamed) = v
+            .as_atom()
+            .and_then(|a| r.rename_symbol_among(x, a, &atoms))
+        {
+            return Ok(renamed);
+        }
+        if let Some(out) = monomial_value(r, x, v)? {
+            return Ok(out);
+        }
     }
     let f = |a: AtomId| (a == x).then(|| v.clone());
     Subst::new(&f, s).rat(r)
+}
+
+/// The exact special case of [`subst_atom`] where `x` occurs in `r` only as itself and
+/// its value is `0` or one term `c·m`: each term `q·m'·x^e` becomes `q·c^e·m'·m^e`
+/// (terms with `x` vanish for `0`), with no hashing and no common denominator. `None`
+/// when the case does not apply (a value with a denominator or several terms, or `x` in
+/// the denominator of `r`).
+fn monomial_value(r: &Rat, x: AtomId, v: &Rat) -> Result<Option<Rat>, NormError> {
+    if !v.den().is_one() || r.den().contains(x) {
+        return Ok(None);
+    }
+    let value = match v.num().terms() {
+        [] => None,
+        [(m, c)] => Some((m, c)),
+        _ => return Ok(None),
+    };
+    let mut acc: Vec<(Mono, Q)> = Vec::with_capacity(r.num().len());
+    // Powers of the value's coefficient and monomial, by exponent (exponents repeat).
+    let mut powers: std::collections::BTreeMap<u32, (Q, Mono)> = Default::default();
+    for (m, q) in r.num().terms() {
+        let (rest, e) = m.split(x);
+        if e == 0 {
+            acc.push((rest, q.clone()));
+            continue;
+        }
+        let Some((vm, vc)) = value else { continue };
+        let (c, pm) = match powers.entry(e) {
+            std::collections::btree_map::Entry::Occupied(o) => o.into_mut(),
+            std::collections::btree_map::Entry::Vacant(slot) => slot.insert((
+                super::poly::pow_q_checked(vc, e)?,
+                vm.pow(e).ok_or(super::Limit::Exponent)?,
+            )),
+        };
+        let t = rest.mul(pm).ok_or(super::Limit::Exponent)?;
+        acc.push((t, super::qops::mul(q, c)));
+    }
+    let num = Poly::from_terms(acc);
+    if num.len() > super::poly::max_terms() {
+        return Err(super::Limit::terms().into());
+    }
+    if r.den().is_one() {
+        return Rat::poly(num).map(Some);
+    }
+    Rat::new(num, r.den().clone()).map(Some)
 }
 
 /// Whether `r` depends on atom `x`, also inside the arguments of other atoms.
