@@ -387,6 +387,10 @@ impl Poly {
         if !pow_fits(self.len(), k) {
             return Err(Limit::terms());
         }
+        if let Some(out) = super::pack::pow_multinomial(self, k)? {
+            // Terms without a common atom, `(1 + x + y + z)^k`: each term made once.
+            return Ok(out);
+        }
         if iterate_is_cheaper(self.len(), k) {
             // A short sum: multiplying by it k − 1 times touches far fewer terms than
             // squaring (the last squaring alone costs |self^(k/2)|²).

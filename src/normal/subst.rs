@@ -350,3 +350,85 @@ pub fn atoms_within(a: AtomId) -> Vec<AtomId> {
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::normal::atom::sym;
+    use num_bigint::BigInt;
+    use proptest::prelude::*;
+
+    /// The general path: the substitution by [`Subst`], with no special case.
+    fn general(r: &Rat, x: AtomId, v: &Rat) -> Result<Rat, NormError> {
+        let s = Assumptions::new();
+        let f = |a: AtomId| (a == x).then(|| v.clone());
+        Subst::new(&f, &s).rat(r)
+    }
+
+    /// A polynomial in the atoms `ids` from `(exponents, numerator, denominator)` terms.
+    fn poly_of(ids: &[AtomId], terms: &[(Vec<u32>, i64, i64)]) -> Poly {
+        Poly::from_terms(
+            terms
+                .iter()
+                .filter_map(|(es, n, d)| {
+                    let pairs = ids.iter().copied().zip(es.iter().copied()).collect();
+                    Some((
+                        Mono::from_pairs(pairs)?,
+                        Q::new(BigInt::from(*n), BigInt::from(*d)),
+                    ))
+                })
+                .collect(),
+        )
+    }
+
+    fn terms(atoms: usize) -> impl Strategy<Value = Vec<(Vec<u32>, i64, i64)>> {
+        proptest::collection::vec(
+            (proptest::collection::vec(0u32..4, atoms), -6i64..7, 1i64..4),
+            0..7,
+        )
+    }
+
+    proptest! {
+        /// Substituting `0`, a fresh symbol, a symbol already present, a constant or a
+        /// term `c·m` for `x` gives the general path's value, for polynomials and for
+        /// fractions whose denominator is free of `x`.
+        #[test]
+        fn monomial_values_agree_with_the_general_substitution(
+            num in terms(3),
+            den in terms(2),
+            value in (0usize..5, proptest::collection::vec(0u32..3, 3), -5i64..6, 1i64..4),
+        ) {
+            let (x, y, b, c) = (sym("x"), sym("y"), sym("b"), sym("c"));
+            let num = poly_of(&[x, y, b], &num);
+            let den = poly_of(&[y, b], &den);
+            let Ok(r) = Rat::new(num, if den.is_zero() { Poly::one() } else { den }) else {
+                return Ok(());
+            };
+            let (kind, es, n, d) = value;
+            let v = match kind {
+                0 => Rat::zero(),
+                1 => Rat::atom(c),
+                2 => Rat::atom(b),
+                3 => Rat::constant(Q::new(BigInt::from(n), BigInt::from(d))),
+                _ => Rat::poly(poly_of(&[y, b, c], &[(es, n, d)])).unwrap_or_else(|_| Rat::zero()),
+            };
+            let fast = subst_atom(&r, x, &v, &Assumptions::new());
+            prop_assert_eq!(fast, general(&r, x, &v));
+        }
+    }
+
+    #[test]
+    fn a_symbol_inside_another_atom_takes_the_general_path() {
+        let (x, y) = (sym("x"), sym("y"));
+        let s = Assumptions::new();
+        let root =
+            crate::normal::func::sqrt(&Rat::atom(x).add(&Rat::atom(y)).unwrap(), &s).unwrap();
+        let r = root.add(&Rat::atom(x)).unwrap();
+        let at_zero = subst_atom(&r, x, &Rat::zero(), &s).unwrap();
+        assert_eq!(
+            at_zero,
+            crate::normal::func::sqrt(&Rat::atom(y), &s).unwrap()
+        );
+        assert_eq!(at_zero, general(&r, x, &Rat::zero()).unwrap());
+    }
+}
