@@ -42,7 +42,8 @@ fn print_terms(p: &Poly) -> Vec<(Mono, Q)> {
 /// The indices of the terms in print order.
 fn print_order(keys: &[PrintKey]) -> Vec<usize> {
     let mut order: Vec<usize> = (0..keys.len()).collect();
-    order.sort_by(|&i, &j| cmp_keys(&keys[i], &keys[j]));
+    // Ties (atoms that print alike) keep the terms' order, as a stable sort would.
+    order.sort_unstable_by(|&i, &j| cmp_keys(&keys[i], &keys[j]).then(i.cmp(&j)));
     order
 }
 
@@ -384,34 +385,58 @@ fn write_factor(out: &mut String, info: &AtomPrint, e: u32, style: Style) {
     } else {
         base
     };
-    let _ = match style {
-        Style::Plain => write!(out, "{base}^{e}"),
-        Style::Latex => {
-            if let Some(rest) = base.strip_prefix("\\sin").or(base.strip_prefix("\\cos")) {
-                // \sin^2\beta
-                let f = &base[..4];
-                write!(out, "{f}^{{{e}}}{rest}")
-            } else {
-                write!(out, "{base}^{{{e}}}")
-            }
+    match style {
+        Style::Plain => {
+            out.push_str(base);
+            out.push('^');
+            write_u64(out, u64::from(e));
         }
-    };
+        Style::Latex => {
+            let (f, rest) = match base.strip_prefix("\\sin").or(base.strip_prefix("\\cos")) {
+                // \sin^2\beta
+                Some(rest) => (&base[..4], rest),
+                None => (base, ""),
+            };
+            out.push_str(f);
+            out.push_str("^{");
+            write_u64(out, u64::from(e));
+            out.push('}');
+            out.push_str(rest);
+        }
+    }
+}
+
+/// A machine word in decimal, without the formatting machinery.
+fn write_u64(out: &mut String, mut v: u64) {
+    let mut buf = [0u8; 20];
+    let mut i = buf.len();
+    loop {
+        i -= 1;
+        buf[i] = b'0' + (v % 10) as u8;
+        v /= 10;
+        if v == 0 {
+            break;
+        }
+    }
+    out.extend(buf[i..].iter().map(|&b| char::from(b)));
 }
 
 /// A whole number, in decimal.
 fn write_uint(out: &mut String, n: &BigUint) {
-    let _ = match n.to_u64() {
-        Some(v) => write!(out, "{v}"),
-        None => write!(out, "{n}"),
-    };
+    match n.to_u64() {
+        Some(v) => write_u64(out, v),
+        None => {
+            let _ = write!(out, "{n}");
+        }
+    }
 }
 
 /// A whole number, in decimal, with its sign.
 fn write_int(out: &mut String, n: &BigInt) {
-    let _ = match n.to_i64() {
-        Some(v) => write!(out, "{v}"),
-        None => write!(out, "{n}"),
-    };
+    if n.is_negative() {
+        out.push('-');
+    }
+    write_uint(out, n.magnitude());
 }
 
 fn number(q: &Q, style: Style) -> String {
