@@ -277,6 +277,13 @@ impl Rat {
     /// `(a/b)·(c/d)` for reduced fractions of rule-free atoms: cancel `gcd(a, d)` and
     /// `gcd(c, b)`; the result is in lowest terms.
     fn mul_free(a: &Poly, b: &Poly, c: &Poly, d: &Poly) -> Result<Rat, NormError> {
+        if b.is_one() && d.is_one() {
+            // Two polynomials: nothing to cancel, no copies of the factors.
+            return Ok(Rat {
+                num: a.mul(c)?,
+                den: Poly::one(),
+            });
+        }
         let g1 = gcd(a, d)?;
         let g2 = gcd(c, b)?;
         let (a, d) = if g1.is_one() {
