@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Issue 34 item 3: W2 at size N as whole commands, the mass and I_xx each one
 # `rigor simplify` process (start, parse, integrate, print), RUNS times each. Prints
-# the median, min and max of the pair's wall time and each process's peak RSS
-# (GNU time, when installed). Compare with the in-process FLINT figure of
+# the median, min and max of the pair's wall time, each process's CPU time (perf, when
+# installed) and peak RSS (GNU time, when installed). Compare with the in-process FLINT figure of
 # `bench/compare.py --only W2`.
 #
 #   bench/whole_commands.sh [RIGOR_BINARY] [N] [RUNS]
@@ -26,6 +26,15 @@ median=${sorted[$((runs / 2))]}
 printf 'W2 n=%s, two processes, %s runs: median %.2f ms, min %.2f ms, max %.2f ms\n' \
   "$n" "$runs" "$(echo "$median / 1000" | bc -l)" "$(echo "${sorted[0]} / 1000" | bc -l)" \
   "$(echo "${sorted[$((runs - 1))]} / 1000" | bc -l)"
+# CPU time of each process (perf's task-clock, mean of RUNS runs): what the pair costs
+# without the waits for a core that a loaded machine adds to the wall time.
+if command -v perf >/dev/null 2>&1; then
+  for e in "$mass" "$ixx"; do
+    ms=$(perf stat -x, -e task-clock -r "$runs" "$bin" simplify "$e" 2>&1 >/dev/null |
+      awk -F, '/task-clock/ {print $1}')
+    echo "  task-clock ${ms} ms: rigor simplify '${e:0:40}…'"
+  done
+fi
 if [ -x /usr/bin/time ]; then
   for e in "$mass" "$ixx"; do
     kb=$( { /usr/bin/time -f '%M' "$bin" simplify "$e" >/dev/null; } 2>&1 | tail -1)

@@ -60,16 +60,26 @@ enum Kind {
 pub fn antiderivative(f: &Rat, x: AtomId, s: &Assumptions) -> Result<Rat, IntError> {
     let name = atom::sym_name(x).unwrap_or_default();
     // Large powers of sums kept factored are integrated written out.
-    let f = &crate::normal::power::expand(f, s)?;
+    let expanded;
+    let f = if crate::normal::power::has_kept(f) {
+        expanded = crate::normal::power::expand(f, s)?;
+        &expanded
+    } else {
+        f
+    };
     if depends_on(&Rat::poly(f.den().clone())?, x) {
         return Err(IntError::Unsupported(format!(
             "the integrand is not a polynomial in {name} (its denominator depends on {name})"
         )));
     }
-    let den = Rat::poly(f.den().clone())?;
     if let Some(p) = polynomial_antiderivative(f, x) {
-        return Ok(Rat::poly(p)?.div(&den)?);
+        let p = Rat::poly(p)?;
+        if f.den().is_one() {
+            return Ok(p);
+        }
+        return Ok(p.div(&Rat::poly(f.den().clone())?)?);
     }
+    let den = Rat::poly(f.den().clone())?;
     let mut total = Rat::zero();
     // Group the numerator's terms by their factor that depends on x other than x itself.
     for (m, q) in f.num().terms() {
@@ -100,28 +110,31 @@ pub fn antiderivative(f: &Rat, x: AtomId, s: &Assumptions) -> Result<Rat, IntErr
 
 /// The fast path: when nothing but `x` itself depends on `x`, integrate term by term
 /// (`x^k → x^(k+1)/(k+1)`) without leaving the polynomial ring.
+///
+/// Every term is multiplied by `x` (and a constant), which keeps the terms' monomial
+/// order, so the result needs no sort.
 fn polynomial_antiderivative(f: &Rat, x: AtomId) -> Option<Poly> {
-    let mut terms = Vec::with_capacity(f.num().len());
-    for (m, q) in f.num().terms() {
-        let mut pairs = Vec::with_capacity(m.pairs().len() + 1);
-        let mut k = 0u32;
-        for &(a, e) in m.pairs() {
-            if a == x {
-                k = e;
-            } else if atom_depends_on(a, x) {
-                return None;
-            } else {
-                pairs.push((a, e));
-            }
-        }
-        pairs.push((x, k.checked_add(1)?));
-        let m2 = Mono::from_pairs(pairs)?;
-        terms.push((
-            m2,
-            crate::normal::qops::div(q, &Q::from_integer(BigInt::from(u64::from(k) + 1))),
-        ));
+    let atoms = f.num().atoms();
+    if atoms.iter().any(|&a| a != x && atom_depends_on(a, x)) {
+        return None;
     }
-    Some(Poly::from_terms(terms))
+    let mut terms = Vec::with_capacity(f.num().len());
+    // 1/(k + 1) by exponent k, computed once each.
+    let mut inverses: Vec<Q> = Vec::new();
+    for (m, q) in f.num().terms() {
+        let (m2, k) = m.times_atom(x)?;
+        let i = k as usize;
+        while inverses.len() <= i.min(4096) {
+            let n = inverses.len() as u64 + 1;
+            inverses.push(Q::new(BigInt::one(), BigInt::from(n)));
+        }
+        let c = match inverses.get(i) {
+            Some(inv) => crate::normal::qops::mul(q, inv),
+            None => crate::normal::qops::div(q, &Q::from_integer(BigInt::from(u64::from(k) + 1))),
+        };
+        terms.push((m2, c));
+    }
+    Some(Poly::from_sorted_terms(terms))
 }
 
 /// `∫ x^k · Π dep dx` for sine, cosine and exponential factors of linear arguments.

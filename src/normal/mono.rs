@@ -180,6 +180,40 @@ impl Mono {
         (Mono(rest), e)
     }
 
+    /// `self · a` and the exponent `a` had in `self`; `None` on exponent overflow.
+    pub fn times_atom(&self, a: AtomId) -> Option<(Mono, u32)> {
+        let mut out = Vec::with_capacity(self.0.len() + 1);
+        let mut had = None;
+        for &(b, e) in &self.0 {
+            if had.is_none() && b >= a {
+                if b == a {
+                    out.push((a, e.checked_add(1)?));
+                    had = Some(e);
+                    continue;
+                }
+                out.push((a, 1));
+                had = Some(0);
+            }
+            out.push((b, e));
+        }
+        if had.is_none() {
+            out.push((a, 1));
+        }
+        Some((Mono(out), had.unwrap_or(0)))
+    }
+
+    /// `self` with atom `x` replaced by atom `a`, which does not occur in it.
+    pub(crate) fn renamed(&self, x: AtomId, a: AtomId) -> Mono {
+        let Ok(i) = self.0.binary_search_by_key(&x, |p| p.0) else {
+            return self.clone();
+        };
+        let mut out = self.0.clone();
+        let e = out.remove(i);
+        let j = out.partition_point(|p| p.0 < a);
+        out.insert(j, (a, e.1));
+        Mono(out)
+    }
+
     /// The highest atom id present.
     pub fn max_atom(&self) -> Option<AtomId> {
         self.0.last().map(|p| p.0)

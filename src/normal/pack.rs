@@ -10,6 +10,7 @@
 use super::atom::AtomId;
 use super::mono::Mono;
 use super::poly::Poly;
+use super::Limit;
 
 /// The bit fields of a set of atoms.
 pub struct Packing {
@@ -177,10 +178,121 @@ fn merge_degrees(
     out
 }
 
+/// `p^k` by the multinomial theorem, when no two terms of `p` share an atom (a constant
+/// term shares none): then every choice of exponents `α` with `|α| = k` gives a
+/// different monomial `Π mᵢ^αᵢ`, with coefficient `k!/Π αᵢ! · Π cᵢ^αᵢ`, so each term of
+/// the power is made once, with no products to merge, and the terms are sorted once.
+/// `None` when terms share an atom, the monomials do not pack, or a coefficient (over
+/// the common denominator) leaves `i128`: the callers multiply instead.
+pub(crate) fn pow_multinomial(p: &Poly, k: u64) -> Result<Option<Poly>, Limit> {
+    use num_bigint::BigInt;
+    use num_integer::Integer;
+    use num_traits::{One, ToPrimitive};
+    let mut ids: Vec<AtomId> = p
+        .terms()
+        .iter()
+        .flat_map(|(m, _)| m.pairs().iter().map(|t| t.0))
+        .collect();
+    let all = ids.len();
+    ids.sort_unstable();
+    ids.dedup();
+    let Ok(k32) = u32::try_from(k) else {
+        return Ok(None);
+    };
+    if ids.len() != all || p.len() < 2 || k < 2 {
+        return Ok(None);
+    }
+    let fields: Vec<(AtomId, u64)> = degrees(p)
+        .into_iter()
+        .map(|(a, d)| (a, d.saturating_mul(k)))
+        .collect();
+    let Some(pk) = Packing::new(&fields) else {
+        return Ok(None);
+    };
+    // Integer coefficients over the common denominator `l`: p = (1/l) Σ cᵢ mᵢ.
+    let mut l = BigInt::one();
+    for (_, q) in p.terms() {
+        l = l.lcm(q.denom());
+    }
+    let mut base: Vec<(u128, i128)> = Vec::with_capacity(p.len());
+    for (m, q) in p.terms() {
+        let c = (q.numer() * (&l / q.denom())).to_i128();
+        match (pk.pack(m), c) {
+            (Some(x), Some(c)) => base.push((x, c)),
+            _ => return Ok(None),
+        }
+    }
+    let mut out: Vec<(u128, i128)> = Vec::new();
+    if !multinomial_terms(&base, k32, 0, 1, &mut out) {
+        return Ok(None);
+    }
+    if out.len() > super::poly::max_terms() {
+        return Err(Limit::terms());
+    }
+    super::poly::check_deadline()?;
+    out.sort_unstable_by_key(|t| t.0);
+    let scale = super::poly::pow_q_checked(&super::poly::Q::new(BigInt::one(), l), k32)?;
+    let terms = out
+        .into_iter()
+        .map(|(x, c)| {
+            let c = super::poly::Q::from_integer(BigInt::from(c));
+            (pk.unpack(x), super::qops::mul(&c, &scale))
+        })
+        .collect();
+    Ok(Some(Poly::from_sorted_terms(terms)))
+}
+
+/// The terms `(Σ αᵢ mᵢ, coeff · Π C(rᵢ, αᵢ) cᵢ^αᵢ)` of the multinomial expansion of the
+/// packed terms `base` to the power `left`, pushed onto `out`; `false` on overflow.
+fn multinomial_terms(
+    base: &[(u128, i128)],
+    left: u32,
+    mono: u128,
+    coeff: i128,
+    out: &mut Vec<(u128, i128)>,
+) -> bool {
+    let Some((&(m, c), rest)) = base.split_first() else {
+        return true;
+    };
+    if rest.is_empty() {
+        // The last term takes the exponent that is left.
+        let Some(cp) = c.checked_pow(left) else {
+            return false;
+        };
+        let Some(coeff) = coeff.checked_mul(cp) else {
+            return false;
+        };
+        out.push((mono + m * u128::from(left), coeff));
+        return true;
+    }
+    // binom = C(left, a), power = c^a.
+    let (mut binom, mut power) = (1i128, 1i128);
+    for a in 0..=left {
+        let Some(t) = coeff.checked_mul(binom).and_then(|t| t.checked_mul(power)) else {
+            return false;
+        };
+        if !multinomial_terms(rest, left - a, mono + m * u128::from(a), t, out) {
+            return false;
+        }
+        if a < left {
+            let Some(b) = binom.checked_mul(i128::from(left - a)) else {
+                return false;
+            };
+            binom = b / i128::from(a + 1);
+            let Some(pw) = power.checked_mul(c) else {
+                return false;
+            };
+            power = pw;
+        }
+    }
+    true
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use num_traits::One;
+    use num_bigint::BigInt;
+    use num_traits::{One, Pow};
     use proptest::prelude::*;
 
     fn mono(pairs: &[(u32, u32)]) -> Mono {
@@ -198,6 +310,76 @@ mod tests {
 
     fn any_mono() -> impl Strategy<Value = Mono> {
         proptest::collection::vec((0u32..6, 0u32..9), 0..5).prop_map(|v| mono(&v))
+    }
+
+    /// A sum of terms without a common atom: term `i` uses atoms `3i`, `3i + 1`, `3i + 2`
+    /// (a term with no exponents is the constant).
+    fn disjoint_sum() -> impl Strategy<Value = Poly> {
+        proptest::collection::vec(
+            (proptest::collection::vec(0u32..4, 3), -9i64..10, 1i64..5),
+            1..5,
+        )
+        .prop_map(|ts| {
+            let terms = ts
+                .into_iter()
+                .enumerate()
+                .map(|(i, (es, n, d))| {
+                    let i = i as u32;
+                    let pairs: Vec<(u32, u32)> = es
+                        .iter()
+                        .enumerate()
+                        .map(|(j, &e)| (3 * i + j as u32, e))
+                        .collect();
+                    let q = super::super::poly::Q::new(n.into(), d.into());
+                    (mono(&pairs), q)
+                })
+                .collect();
+            Poly::from_terms(terms)
+        })
+    }
+
+    proptest! {
+        /// The multinomial expansion is the repeated product, term for term.
+        #[test]
+        fn multinomial_power_is_the_repeated_product(p in disjoint_sum(), k in 0u64..9) {
+            let mut want = Poly::one();
+            for _ in 0..k {
+                want = want.mul(&p).unwrap_or_else(|_| unreachable!());
+            }
+            if let Some(got) = pow_multinomial(&p, k).unwrap_or_else(|_| unreachable!()) {
+                prop_assert_eq!(&got, &want);
+            } else {
+                // Refused only when the expansion does not apply.
+                let atoms: usize = p.terms().iter().map(|t| t.0.pairs().len()).sum();
+                prop_assert!(k < 2 || p.len() < 2 || atoms != p.atoms().len());
+            }
+            prop_assert_eq!(p.pow(k).unwrap_or_else(|_| unreachable!()), want);
+        }
+    }
+
+    #[test]
+    fn multinomial_power_needs_terms_without_a_common_atom() {
+        let q = super::super::poly::Q::one();
+        let shared = Poly::from_terms(vec![
+            (mono(&[(1, 1)]), q.clone()),
+            (mono(&[(1, 2), (2, 1)]), q.clone()),
+        ]);
+        assert!(matches!(pow_multinomial(&shared, 3), Ok(None)));
+        let big = Poly::from_terms(vec![
+            (mono(&[]), q.clone()),
+            (
+                mono(&[(1, 1)]),
+                super::super::poly::Q::from_integer(10i64.pow(15).into()),
+            ),
+        ]);
+        // (1 + 10^15 x)^9 has a coefficient beyond i128: the caller multiplies instead.
+        assert!(matches!(pow_multinomial(&big, 9), Ok(None)));
+        assert_eq!(
+            big.pow(9).ok().and_then(|p| p.lead().map(|t| t.1.clone())),
+            Some(super::super::poly::Q::from_integer(
+                BigInt::from(10).pow(135u32)
+            ))
+        );
     }
 
     #[test]

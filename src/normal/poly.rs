@@ -97,17 +97,17 @@ impl Poly {
         if !self.contains(x) {
             return Some(self.clone());
         }
+        if self.contains(a) {
+            return None;
+        }
         let mut terms: Vec<(Mono, Q)> = Vec::with_capacity(self.terms.len());
         for (m, q) in &self.terms {
-            let pairs = m
-                .pairs()
-                .iter()
-                .map(|&(b, e)| (if b == x { a } else { b }, e))
-                .collect();
-            terms.push((Mono::from_pairs(pairs)?, q.clone()));
+            terms.push((m.renamed(x, a), q.clone()));
         }
         // Distinct monomials stay distinct (a is new): sorting restores the order.
-        terms.sort_unstable_by(|s, t| s.0.cmp(&t.0));
+        if !terms.is_sorted_by(|s, t| s.0 < t.0) {
+            terms.sort_unstable_by(|s, t| s.0.cmp(&t.0));
+        }
         Some(Poly { terms })
     }
 
@@ -386,6 +386,10 @@ impl Poly {
         }
         if !pow_fits(self.len(), k) {
             return Err(Limit::terms());
+        }
+        if let Some(out) = super::pack::pow_multinomial(self, k)? {
+            // Terms without a common atom, `(1 + x + y + z)^k`: each term made once.
+            return Ok(out);
         }
         if iterate_is_cheaper(self.len(), k) {
             // A short sum: multiplying by it k − 1 times touches far fewer terms than

@@ -7,9 +7,12 @@ use super::atom::{cmp_atoms, get, Atom, AtomId};
 use super::mono::Mono;
 use super::poly::{Poly, Q};
 use super::rat::Rat;
-use num_bigint::BigInt;
-use num_traits::{One, Signed};
+use num_bigint::{BigInt, BigUint};
+use num_traits::{One, Signed, ToPrimitive};
+use std::borrow::Cow;
+use std::cell::OnceCell;
 use std::cmp::Ordering;
+use std::fmt::Write as _;
 
 /// Output syntax.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -28,61 +31,81 @@ fn sorted_factors(m: &Mono) -> Vec<(AtomId, u32)> {
 }
 
 /// Terms of a polynomial in print order.
+#[cfg(test)]
 fn print_terms(p: &Poly) -> Vec<(Mono, Q)> {
-    let keys = print_keys(p);
-    let mut order: Vec<usize> = (0..p.len()).collect();
-    order.sort_by(|&i, &j| cmp_keys(&keys[i], &keys[j]));
-    order.into_iter().map(|i| p.terms()[i].clone()).collect()
+    print_order(&print_keys(p).1)
+        .into_iter()
+        .map(|i| p.terms()[i].clone())
+        .collect()
+}
+
+/// The indices of the terms in print order.
+fn print_order(keys: &[PrintKey]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..keys.len()).collect();
+    // Ties (atoms that print alike) keep the terms' order, as a stable sort would.
+    order.sort_unstable_by(|&i, &j| cmp_keys(&keys[i], &keys[j]).then(i.cmp(&j)));
+    order
 }
 
 /// The first term of `p` in print order.
 fn first_print_term(p: &Poly) -> Option<&(Mono, Q)> {
-    let keys = print_keys(p);
+    let keys = print_keys(p).1;
     (0..p.len())
         .min_by(|&i, &j| cmp_keys(&keys[i], &keys[j]))
         .map(|i| &p.terms()[i])
 }
 
-/// A monomial's sort key: its degree and its factors as `(rank, exponent)` in print
+/// A monomial's sort key: its degree and its factors as `(rank, slot, exponent)` in print
 /// order, where `rank` numbers the polynomial's atoms in [`cmp_atoms`] order (atoms
-/// that compare equal share a rank). Comparing keys with [`cmp_keys`] is [`cmp_monos`]
-/// without comparing atoms again for every pair of terms.
-type PrintKey = (u64, Vec<(usize, u32)>);
+/// that compare equal share a rank) and `slot` is the atom's place in the list
+/// [`print_keys`] returns. Comparing keys with [`cmp_keys`] is [`cmp_monos`] without
+/// comparing atoms again for every pair of terms.
+type PrintKey = (u64, Vec<(usize, usize, u32)>);
 
-fn print_keys(p: &Poly) -> Vec<PrintKey> {
+/// The polynomial's atoms in [`cmp_atoms`] order, and each term's key.
+fn print_keys(p: &Poly) -> (Vec<AtomId>, Vec<PrintKey>) {
     let mut atoms = p.atoms();
     atoms.sort_by(|a, b| cmp_atoms(*a, *b));
-    let mut ranks: Vec<(AtomId, usize)> = Vec::with_capacity(atoms.len());
+    // (atom, rank, slot), by atom id.
+    let mut ranks: Vec<(AtomId, usize, usize)> = Vec::with_capacity(atoms.len());
     for (i, &a) in atoms.iter().enumerate() {
         let rank = match (i.checked_sub(1).and_then(|j| atoms.get(j)), ranks.last()) {
-            (Some(&prev), Some(&(_, r))) if cmp_atoms(prev, a) == Ordering::Equal => r,
+            (Some(&prev), Some(&(_, r, _))) if cmp_atoms(prev, a) == Ordering::Equal => r,
             _ => i,
         };
-        ranks.push((a, rank));
+        ranks.push((a, rank, i));
     }
     ranks.sort_unstable_by_key(|t| t.0);
     let rank_of = |a: AtomId| {
         ranks
             .binary_search_by_key(&a, |t| t.0)
-            .map_or(usize::MAX, |i| ranks[i].1)
+            .map_or((usize::MAX, usize::MAX), |i| (ranks[i].1, ranks[i].2))
     };
-    p.terms()
+    let keys = p
+        .terms()
         .iter()
         .map(|(m, _)| {
-            let mut f: Vec<(usize, u32)> =
-                m.pairs().iter().map(|&(a, e)| (rank_of(a), e)).collect();
+            let mut f: Vec<(usize, usize, u32)> = m
+                .pairs()
+                .iter()
+                .map(|&(a, e)| {
+                    let (rank, slot) = rank_of(a);
+                    (rank, slot, e)
+                })
+                .collect();
             // A stable sort, as `sorted_factors`: equal ranks keep the id order.
             f.sort_by_key(|t| t.0);
             (m.degree(), f)
         })
-        .collect()
+        .collect();
+    (atoms, keys)
 }
 
 /// [`cmp_monos`] on keys from [`print_keys`].
 fn cmp_keys(a: &PrintKey, b: &PrintKey) -> Ordering {
     b.0.cmp(&a.0).then_with(|| {
         for (x, y) in a.1.iter().zip(b.1.iter()) {
-            let o = x.0.cmp(&y.0).then(y.1.cmp(&x.1));
+            let o = x.0.cmp(&y.0).then(y.2.cmp(&x.2));
             if o != Ordering::Equal {
                 return o;
             }
@@ -117,7 +140,7 @@ pub fn render(r: &Rat, style: Style) -> String {
     let num_single = num.len() == 1;
     let num_text = if num_single {
         let (m, _) = &num.terms()[0];
-        term(m, &Q::from_integer(a.clone()), style, true)
+        term(m, &Q::from_integer(a.clone()), style)
     } else if a.is_one() {
         poly_as_is(&num, style)
     } else {
@@ -171,16 +194,16 @@ fn reads_negated(p: &Poly) -> bool {
 /// `p` with the sign of each term adjusted for the kept factors printed negated (an odd
 /// power of a negated factor changes the term's sign). Printing only: the atoms
 /// themselves are not changed, so the result is not `p`'s value.
-fn oriented_factors(p: &Poly) -> Poly {
+fn oriented_factors(p: &Poly) -> Cow<'_, Poly> {
     let flips: Vec<AtomId> = p
         .atoms()
         .into_iter()
         .filter(|a| matches!(&*get(*a), Atom::Factor(s) if reads_negated(s)))
         .collect();
     if flips.is_empty() {
-        return p.clone();
+        return Cow::Borrowed(p);
     }
-    Poly::from_terms(
+    Cow::Owned(Poly::from_terms(
         p.terms()
             .iter()
             .map(|(m, q)| {
@@ -188,7 +211,7 @@ fn oriented_factors(p: &Poly) -> Poly {
                 (m.clone(), if odd { -q } else { q.clone() })
             })
             .collect(),
-    )
+    ))
 }
 
 /// A polynomial as a sum of terms.
@@ -198,12 +221,25 @@ pub fn poly(p: &Poly, style: Style) -> String {
 
 /// A polynomial as a sum of terms, its kept factors' signs already oriented.
 fn poly_as_is(p: &Poly, style: Style) -> String {
-    let terms = print_terms(p);
-    if terms.is_empty() {
-        return "0".into();
-    }
     let mut out = String::new();
-    for (i, (m, q)) in terms.iter().enumerate() {
+    write_poly(&mut out, p, style);
+    out
+}
+
+/// Writes a polynomial as a sum of terms into `out`, in one pass over the terms in print
+/// order: each atom's text is made once, and numbers are written in place, so the time
+/// is linear in the length of the text (after the sort of the terms).
+fn write_poly(out: &mut String, p: &Poly, style: Style) {
+    if p.is_empty() {
+        out.push('0');
+        return;
+    }
+    let (atoms, keys) = print_keys(p);
+    let infos: Vec<AtomPrint> = atoms.iter().map(|&a| AtomPrint::new(a)).collect();
+    let pairs: usize = keys.iter().map(|k| k.1.len()).sum();
+    out.reserve(p.len() * 8 + pairs * 4);
+    for (i, k) in print_order(&keys).into_iter().enumerate() {
+        let q = &p.terms()[k].1;
         let neg = q.is_negative();
         if i == 0 {
             if neg {
@@ -212,54 +248,195 @@ fn poly_as_is(p: &Poly, style: Style) -> String {
         } else {
             out.push_str(if neg { " - " } else { " + " });
         }
-        out.push_str(&term(m, &q.abs(), style, false));
+        let factors = keys[k].1.iter().map(|f| (&infos[f.1], f.2));
+        write_term(out, factors, q.numer().magnitude(), q.denom(), style);
     }
-    out
 }
 
-/// One term `q·m` with `q > 0`. `int_only`: the coefficient is a whole number.
-fn term(m: &Mono, q: &Q, style: Style, int_only: bool) -> String {
-    let factors = factors(m, style);
-    let (n, d) = (q.numer(), q.denom());
-    let _ = int_only;
-    if factors.is_empty() {
-        return number(q, style);
-    }
+/// One term `q·m` with `q > 0`.
+fn term(m: &Mono, q: &Q, style: Style) -> String {
+    let f = sorted_factors(m);
+    let infos: Vec<AtomPrint> = f.iter().map(|t| AtomPrint::new(t.0)).collect();
     let mut s = String::new();
-    let body = factors.join(match style {
-        Style::Plain => " ",
-        Style::Latex => " ",
-    });
+    let factors = infos.iter().zip(f.iter().map(|t| t.1));
+    write_term(&mut s, factors, q.numer().magnitude(), q.denom(), style);
+    s
+}
+
+/// What printing a factor needs of its atom, made once per polynomial.
+struct AtomPrint {
+    atom: std::sync::Arc<Atom>,
+    /// A square root of a whole number below 10 000: merged with the term's other such
+    /// roots (to the first power) into one, which the parser splits back into the same primes.
+    radicand: Option<BigInt>,
+    /// The atom's text in each style, made when first needed.
+    text: [OnceCell<String>; 2],
+}
+
+impl AtomPrint {
+    fn new(a: AtomId) -> AtomPrint {
+        let atom = get(a);
+        let radicand = match &*atom {
+            Atom::Sqrt(p) => p
+                .as_constant()
+                .filter(|c| c.is_integer() && c.to_integer() < BigInt::from(10_000))
+                .map(|c| c.to_integer()),
+            _ => None,
+        };
+        AtomPrint {
+            atom,
+            radicand,
+            text: [OnceCell::new(), OnceCell::new()],
+        }
+    }
+
+    fn text(&self, style: Style) -> &str {
+        self.text[style as usize].get_or_init(|| atom_text(&self.atom, style))
+    }
+}
+
+/// Writes one term from its factors in print order and its coefficient `n/d` (`n > 0`):
+/// `3 a^2 b/2`, `\frac{3 a^{2} b}{2}`; numeric square roots merged (`sqrt(2) sqrt(3)` →
+/// `sqrt(6)`, written first).
+fn write_term<'a>(
+    out: &mut String,
+    factors: impl Iterator<Item = (&'a AtomPrint, u32)> + Clone,
+    n: &BigUint,
+    d: &BigInt,
+    style: Style,
+) {
+    let mut radical = BigInt::one();
+    let mut others = 0usize;
+    for (info, e) in factors.clone() {
+        match (&info.radicand, e) {
+            (Some(c), 1) => radical *= c,
+            _ => others += 1,
+        }
+    }
+    if others == 0 && radical.is_one() {
+        let q = Q::new(BigInt::from(n.clone()), d.clone());
+        out.push_str(&number(&q, style));
+        return;
+    }
+    let frac = style == Style::Latex && !d.is_one();
+    if frac {
+        out.push_str("\\frac{");
+    }
+    if !n.is_one() {
+        write_uint(out, n);
+        out.push(' ');
+    }
+    let mut first = true;
+    if !radical.is_one() {
+        match style {
+            Style::Plain => out.push_str("sqrt("),
+            Style::Latex => out.push_str("\\sqrt{"),
+        }
+        write_int(out, &radical);
+        out.push(if style == Style::Plain { ')' } else { '}' });
+        first = false;
+    }
+    for (info, e) in factors {
+        if info.radicand.is_some() && e == 1 {
+            continue;
+        }
+        if !first {
+            out.push(' ');
+        }
+        first = false;
+        write_factor(out, info, e, style);
+    }
+    if frac {
+        out.push_str("}{");
+        write_int(out, d);
+        out.push('}');
+    } else if !d.is_one() {
+        out.push('/');
+        write_int(out, d);
+    }
+}
+
+/// One factor `atom^e` of a term.
+fn write_factor(out: &mut String, info: &AtomPrint, e: u32, style: Style) {
+    if let (Atom::Root(p, n), true) = (&*info.atom, e > 1) {
+        // A power of a root as one fractional power: (z)^(2/3), \sqrt[3]{z^{2}}.
+        let _ = match style {
+            Style::Plain => write!(out, "({})^({e}/{n})", poly(p, style)),
+            Style::Latex => {
+                let inner = if p.len() == 1 {
+                    poly(p, style)
+                } else {
+                    paren(&poly(p, style), style)
+                };
+                write!(out, "\\sqrt[{n}]{{{inner}^{{{e}}}}}")
+            }
+        };
+        return;
+    }
+    let base = info.text(style);
+    if e == 1 {
+        out.push_str(base);
+        return;
+    }
+    let parens;
+    let base = if needs_parens_for_power(&info.atom) {
+        parens = paren(base, style);
+        parens.as_str()
+    } else {
+        base
+    };
     match style {
         Style::Plain => {
-            if !n.is_one() {
-                s.push_str(&n.to_string());
-                s.push(' ');
-            }
-            s.push_str(&body);
-            if !d.is_one() {
-                s.push('/');
-                s.push_str(&d.to_string());
-            }
+            out.push_str(base);
+            out.push('^');
+            write_u64(out, u64::from(e));
         }
         Style::Latex => {
-            if d.is_one() {
-                if !n.is_one() {
-                    s.push_str(&n.to_string());
-                    s.push(' ');
-                }
-                s.push_str(&body);
-            } else {
-                let top = if n.is_one() {
-                    body
-                } else {
-                    format!("{n} {body}")
-                };
-                s.push_str(&format!("\\frac{{{top}}}{{{d}}}"));
-            }
+            let (f, rest) = match base.strip_prefix("\\sin").or(base.strip_prefix("\\cos")) {
+                // \sin^2\beta
+                Some(rest) => (&base[..4], rest),
+                None => (base, ""),
+            };
+            out.push_str(f);
+            out.push_str("^{");
+            write_u64(out, u64::from(e));
+            out.push('}');
+            out.push_str(rest);
         }
     }
-    s
+}
+
+/// A machine word in decimal, without the formatting machinery.
+fn write_u64(out: &mut String, mut v: u64) {
+    let mut buf = [0u8; 20];
+    let mut i = buf.len();
+    loop {
+        i -= 1;
+        buf[i] = b'0' + (v % 10) as u8;
+        v /= 10;
+        if v == 0 {
+            break;
+        }
+    }
+    out.extend(buf[i..].iter().map(|&b| char::from(b)));
+}
+
+/// A whole number, in decimal.
+fn write_uint(out: &mut String, n: &BigUint) {
+    match n.to_u64() {
+        Some(v) => write_u64(out, v),
+        None => {
+            let _ = write!(out, "{n}");
+        }
+    }
+}
+
+/// A whole number, in decimal, with its sign.
+fn write_int(out: &mut String, n: &BigInt) {
+    if n.is_negative() {
+        out.push('-');
+    }
+    write_uint(out, n.magnitude());
 }
 
 fn number(q: &Q, style: Style) -> String {
@@ -280,69 +457,6 @@ fn number(q: &Q, style: Style) -> String {
             }
         }
     }
-}
-
-/// The factors of a monomial, numeric square roots merged (`sqrt(2) sqrt(3)` → `sqrt(6)`).
-fn factors(m: &Mono, style: Style) -> Vec<String> {
-    let mut out = Vec::new();
-    let mut radical = BigInt::one();
-    for (a, e) in sorted_factors(m) {
-        let atom = get(a);
-        if let Atom::Sqrt(p) = &*atom {
-            if let Some(c) = p.as_constant() {
-                // Merge only radicands the parser splits back into the same primes.
-                if c.is_integer() && e == 1 && c.to_integer() < BigInt::from(10_000) {
-                    radical *= c.to_integer();
-                    continue;
-                }
-            }
-        }
-        if let (Atom::Root(p, n), true) = (&*atom, e > 1) {
-            // A power of a root as one fractional power: (z)^(2/3), \sqrt[3]{z^{2}}.
-            out.push(match style {
-                Style::Plain => format!("({})^({e}/{n})", poly(p, style)),
-                Style::Latex => {
-                    let inner = if p.len() == 1 {
-                        poly(p, style)
-                    } else {
-                        paren(&poly(p, style), style)
-                    };
-                    format!("\\sqrt[{n}]{{{inner}^{{{e}}}}}")
-                }
-            });
-            continue;
-        }
-        let base = atom_text(&atom, style);
-        if e == 1 {
-            out.push(base);
-        } else {
-            let base = if needs_parens_for_power(&atom) {
-                paren(&base, style)
-            } else {
-                base
-            };
-            out.push(match style {
-                Style::Plain => format!("{base}^{e}"),
-                Style::Latex => {
-                    if let Some(rest) = base.strip_prefix("\\sin").or(base.strip_prefix("\\cos")) {
-                        // \sin^2\beta
-                        let f = &base[..4];
-                        format!("{f}^{{{e}}}{rest}")
-                    } else {
-                        format!("{base}^{{{e}}}")
-                    }
-                }
-            });
-        }
-    }
-    if !radical.is_one() {
-        let r = match style {
-            Style::Plain => format!("sqrt({radical})"),
-            Style::Latex => format!("\\sqrt{{{radical}}}"),
-        };
-        out.insert(0, r);
-    }
-    out
 }
 
 fn needs_parens_for_power(a: &Atom) -> bool {

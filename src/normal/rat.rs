@@ -16,6 +16,20 @@ fn exact(a: &Poly, b: &Poly) -> Result<Poly, NormError> {
     div_exact(a, b)?.ok_or(NormError::Limit(Limit::terms()))
 }
 
+/// `p` reduced by the atoms' rules; moved, not copied, when none of its atoms has one.
+fn reduced(p: Poly) -> Result<Poly, NormError> {
+    if p.len() <= 1 && p.terms().first().is_none_or(|t| t.0.is_one()) {
+        return Ok(p);
+    }
+    let free = super::atom::rules(&p.atoms())
+        .iter()
+        .all(|r| *r == super::atom::Rule::Free);
+    if free {
+        return Ok(p);
+    }
+    reduce(&p)
+}
+
 /// A normal form: a reduced rational function over ℚ in atoms.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct Rat {
@@ -26,15 +40,18 @@ pub struct Rat {
 impl Rat {
     /// The canonical form of `num / den`. Fails when `den` is zero.
     pub fn new(num: Poly, den: Poly) -> Result<Rat, NormError> {
-        let den = reduce(&den)?;
+        let den = reduced(den)?;
         if den.is_zero() {
             return Err(NormError::DivisionByZero);
         }
-        let num = reduce(&num)?;
+        let num = reduced(num)?;
         if num.is_zero() {
             return Ok(Rat::zero());
         }
         if let Some(c) = den.as_constant() {
+            if c.is_one() {
+                return Ok(Rat { num, den });
+            }
             return Ok(Rat {
                 num: num.scale(&c.recip()),
                 den: Poly::one(),
@@ -78,7 +95,7 @@ impl Rat {
     /// A polynomial as a rational function (reduced).
     pub fn poly(p: Poly) -> Result<Rat, NormError> {
         Ok(Rat {
-            num: reduce(&p)?,
+            num: reduced(p)?,
             den: Poly::one(),
         })
     }
@@ -231,15 +248,24 @@ impl Rat {
     /// even inside another atom) and `x` occurs only as itself: renaming is then a ring
     /// isomorphism, so the fraction stays reduced and needs no gcd.
     pub fn rename_symbol(&self, x: super::atom::AtomId, a: super::atom::AtomId) -> Option<Rat> {
+        self.rename_symbol_among(x, a, &self.atoms())
+    }
+
+    /// [`Rat::rename_symbol`] with `atoms`, the value of `self.atoms()`, given.
+    pub(crate) fn rename_symbol_among(
+        &self,
+        x: super::atom::AtomId,
+        a: super::atom::AtomId,
+        atoms: &[super::atom::AtomId],
+    ) -> Option<Rat> {
         use super::atom::{self, Atom};
         let symbol = |id| matches!(&*atom::get(id), Atom::Sym(_));
         if !symbol(x) || !symbol(a) {
             return None;
         }
         // `a` nowhere, not even inside another atom (`sqrt(a)` would relate to `a`).
-        if super::subst::depends_on(self, a)
-            || self
-                .atoms()
+        if atoms.iter().any(|&b| super::subst::atom_depends_on(b, a))
+            || atoms
                 .iter()
                 .any(|&b| b != x && super::subst::atom_depends_on(b, x))
         {
@@ -251,6 +277,13 @@ impl Rat {
     /// `(a/b)·(c/d)` for reduced fractions of rule-free atoms: cancel `gcd(a, d)` and
     /// `gcd(c, b)`; the result is in lowest terms.
     fn mul_free(a: &Poly, b: &Poly, c: &Poly, d: &Poly) -> Result<Rat, NormError> {
+        if b.is_one() && d.is_one() {
+            // Two polynomials: nothing to cancel, no copies of the factors.
+            return Ok(Rat {
+                num: a.mul(c)?,
+                den: Poly::one(),
+            });
+        }
         let g1 = gcd(a, d)?;
         let g2 = gcd(c, b)?;
         let (a, d) = if g1.is_one() {
@@ -276,6 +309,9 @@ impl Rat {
 
     /// The difference.
     pub fn sub(&self, o: &Rat) -> Result<Rat, NormError> {
+        if o.is_zero() {
+            return Ok(self.clone());
+        }
         self.add(&o.neg())
     }
 

@@ -230,14 +230,69 @@ pub fn rebuild_under(r: &Rat, x: AtomId, s: &Assumptions) -> Result<Rat, NormErr
 
 /// `r` with atom `x` replaced by `v`.
 pub fn subst_atom(r: &Rat, x: AtomId, v: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
-    if !depends_on(r, x) {
+    let atoms = r.atoms();
+    // Whether `x` occurs only as itself, never inside another atom's arguments.
+    let only_itself = atoms.iter().all(|&b| b == x || !atom_depends_on(b, x));
+    if only_itself && atoms.binary_search(&x).is_err() {
         return Ok(r.clone());
     }
-    if let Some(renamed) = v.as_atom().and_then(|a| r.rename_symbol(x, a)) {
-        return Ok(renamed);
+    if only_itself {
+        if let Some(renamed) = v
+            .as_atom()
+            .and_then(|a| r.rename_symbol_among(x, a, &atoms))
+        {
+            return Ok(renamed);
+        }
+        if let Some(out) = monomial_value(r, x, v)? {
+            return Ok(out);
+        }
     }
     let f = |a: AtomId| (a == x).then(|| v.clone());
     Subst::new(&f, s).rat(r)
+}
+
+/// The exact special case of [`subst_atom`] where `x` occurs in `r` only as itself and
+/// its value is `0` or one term `c·m`: each term `q·m'·x^e` becomes `q·c^e·m'·m^e`
+/// (terms with `x` vanish for `0`), with no hashing and no common denominator. `None`
+/// when the case does not apply (a value with a denominator or several terms, or `x` in
+/// the denominator of `r`).
+fn monomial_value(r: &Rat, x: AtomId, v: &Rat) -> Result<Option<Rat>, NormError> {
+    if !v.den().is_one() || r.den().contains(x) {
+        return Ok(None);
+    }
+    let value = match v.num().terms() {
+        [] => None,
+        [(m, c)] => Some((m, c)),
+        _ => return Ok(None),
+    };
+    let mut acc: Vec<(Mono, Q)> = Vec::with_capacity(r.num().len());
+    // Powers of the value's coefficient and monomial, by exponent (exponents repeat).
+    let mut powers: std::collections::BTreeMap<u32, (Q, Mono)> = Default::default();
+    for (m, q) in r.num().terms() {
+        let (rest, e) = m.split(x);
+        if e == 0 {
+            acc.push((rest, q.clone()));
+            continue;
+        }
+        let Some((vm, vc)) = value else { continue };
+        let (c, pm) = match powers.entry(e) {
+            std::collections::btree_map::Entry::Occupied(o) => o.into_mut(),
+            std::collections::btree_map::Entry::Vacant(slot) => slot.insert((
+                super::poly::pow_q_checked(vc, e)?,
+                vm.pow(e).ok_or(super::Limit::Exponent)?,
+            )),
+        };
+        let t = rest.mul(pm).ok_or(super::Limit::Exponent)?;
+        acc.push((t, super::qops::mul(q, c)));
+    }
+    let num = Poly::from_terms(acc);
+    if num.len() > super::poly::max_terms() {
+        return Err(super::Limit::terms().into());
+    }
+    if r.den().is_one() {
+        return Rat::poly(num).map(Some);
+    }
+    Rat::new(num, r.den().clone()).map(Some)
 }
 
 /// Whether `r` depends on atom `x`, also inside the arguments of other atoms.
@@ -294,4 +349,86 @@ pub fn atoms_within(a: AtomId) -> Vec<AtomId> {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::normal::atom::sym;
+    use num_bigint::BigInt;
+    use proptest::prelude::*;
+
+    /// The general path: the substitution by [`Subst`], with no special case.
+    fn general(r: &Rat, x: AtomId, v: &Rat) -> Result<Rat, NormError> {
+        let s = Assumptions::new();
+        let f = |a: AtomId| (a == x).then(|| v.clone());
+        Subst::new(&f, &s).rat(r)
+    }
+
+    /// A polynomial in the atoms `ids` from `(exponents, numerator, denominator)` terms.
+    fn poly_of(ids: &[AtomId], terms: &[(Vec<u32>, i64, i64)]) -> Poly {
+        Poly::from_terms(
+            terms
+                .iter()
+                .filter_map(|(es, n, d)| {
+                    let pairs = ids.iter().copied().zip(es.iter().copied()).collect();
+                    Some((
+                        Mono::from_pairs(pairs)?,
+                        Q::new(BigInt::from(*n), BigInt::from(*d)),
+                    ))
+                })
+                .collect(),
+        )
+    }
+
+    fn terms(atoms: usize) -> impl Strategy<Value = Vec<(Vec<u32>, i64, i64)>> {
+        proptest::collection::vec(
+            (proptest::collection::vec(0u32..4, atoms), -6i64..7, 1i64..4),
+            0..7,
+        )
+    }
+
+    proptest! {
+        /// Substituting `0`, a fresh symbol, a symbol already present, a constant or a
+        /// term `c·m` for `x` gives the general path's value, for polynomials and for
+        /// fractions whose denominator is free of `x`.
+        #[test]
+        fn monomial_values_agree_with_the_general_substitution(
+            num in terms(3),
+            den in terms(2),
+            value in (0usize..5, proptest::collection::vec(0u32..3, 3), -5i64..6, 1i64..4),
+        ) {
+            let (x, y, b, c) = (sym("x"), sym("y"), sym("b"), sym("c"));
+            let num = poly_of(&[x, y, b], &num);
+            let den = poly_of(&[y, b], &den);
+            let Ok(r) = Rat::new(num, if den.is_zero() { Poly::one() } else { den }) else {
+                return Ok(());
+            };
+            let (kind, es, n, d) = value;
+            let v = match kind {
+                0 => Rat::zero(),
+                1 => Rat::atom(c),
+                2 => Rat::atom(b),
+                3 => Rat::constant(Q::new(BigInt::from(n), BigInt::from(d))),
+                _ => Rat::poly(poly_of(&[y, b, c], &[(es, n, d)])).unwrap_or_else(|_| Rat::zero()),
+            };
+            let fast = subst_atom(&r, x, &v, &Assumptions::new());
+            prop_assert_eq!(fast, general(&r, x, &v));
+        }
+    }
+
+    #[test]
+    fn a_symbol_inside_another_atom_takes_the_general_path() {
+        let (x, y) = (sym("x"), sym("y"));
+        let s = Assumptions::new();
+        let root =
+            crate::normal::func::sqrt(&Rat::atom(x).add(&Rat::atom(y)).unwrap(), &s).unwrap();
+        let r = root.add(&Rat::atom(x)).unwrap();
+        let at_zero = subst_atom(&r, x, &Rat::zero(), &s).unwrap();
+        assert_eq!(
+            at_zero,
+            crate::normal::func::sqrt(&Rat::atom(y), &s).unwrap()
+        );
+        assert_eq!(at_zero, general(&r, x, &Rat::zero()).unwrap());
+    }
 }

@@ -249,9 +249,21 @@ pub(crate) fn number(i: &str) -> PResult<'_, BigRational> {
     else {
         return too_big();
     };
-    let digits: BigInt = match format!("{whole}{frac}").parse() {
-        Ok(d) => d,
-        Err(_) => return no_match(i),
+    let digits: BigInt = if whole.len() + frac.len() <= 18 {
+        // At most 18 digits fit in a machine word: no text copied, no big-number parse.
+        let word = whole
+            .bytes()
+            .chain(frac.bytes())
+            .fold(0u64, |n, b| n * 10 + u64::from(b - b'0'));
+        if scale == 0 {
+            return Ok((rest, BigRational::from_integer(BigInt::from(word))));
+        }
+        BigInt::from(word)
+    } else {
+        match format!("{whole}{frac}").parse() {
+            Ok(d) => d,
+            Err(_) => return no_match(i),
+        }
     };
     let ten_to = |n: i64| {
         num_traits::pow(

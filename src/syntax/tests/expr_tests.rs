@@ -63,6 +63,12 @@ fn numbers() {
     check("1.50", "3/2");
     check("007", "7");
     check("2.5m", "(* 5/2 m)");
+    // Either side of the machine-word fast path (18 digits) reads the same way.
+    check("999999999999999999", "999999999999999999");
+    check("1000000000000000000", "1000000000000000000");
+    check("12345678901234567890", "12345678901234567890");
+    check("99999999999999999.9", "999999999999999999/10");
+    check("0.000000000000000001", "1/1000000000000000000");
     match expr("0.71").map(|e| e.kind) {
         Ok(ExprKind::Num(n)) => {
             assert_eq!(n, num_rational::BigRational::new(71.into(), 100.into()))
