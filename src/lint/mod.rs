@@ -5,6 +5,7 @@
 //! say), a chain whose left side is a lone new symbol defining it for later chains.
 
 use crate::diag::{Code, Mistake};
+mod cache;
 mod carry;
 mod display;
 mod extract;
@@ -17,16 +18,15 @@ mod reason;
 mod sound;
 mod values;
 
-use crate::check::{check_source, FileReport, MemoryResolver, Options, Status};
+use crate::check::{FileReport, Options, Status};
 use crate::diag::{Diagnostic, LineIndex};
 use crate::syntax::ast::{Chain, Expr, ExprKind, Func, Reading, Span};
-use crate::syntax::ParseOptions;
+use cache::{stopped, Checked};
 pub use extract::{pieces, DocKind, Piece};
 use later::{later_is_a_mistake, later_link, later_links, later_needs, Later};
 use partial::{conditions, once, report_all};
 pub use reason::Reason;
-use std::collections::{HashMap, HashSet};
-use std::sync::{Arc, Mutex};
+use std::collections::HashSet;
 
 /// The verdict on one chain.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -175,66 +175,6 @@ enum Item {
     Chain(Chain),
     /// A chain written before an implication arrow: a premise the notes impose.
     Imposed(Chain),
-}
-
-/// The reports of the derivations checked so far in one run, by their text, and
-/// whether each statement generated so far reads. Notes repeat themselves (the same
-/// worked example under several headings, boilerplate relations): a derivation
-/// identical to one already checked, with the same options, has the same report, so it
-/// is checked once (and a statement read once). The cache lives for one call of
-/// [`lint`].
-#[derive(Default)]
-pub(super) struct Checked {
-    reports: Mutex<Reports>,
-    parsed: Mutex<HashMap<String, bool>>,
-}
-
-/// Reports by the name they were checked under and whether the check stopped at a
-/// determined quantity, then by the derivation's text.
-type Reports = HashMap<(String, bool), HashMap<String, Arc<FileReport>>>;
-
-impl Checked {
-    /// The report of `deriv` checked as `name`, checked now unless it was before.
-    pub(super) fn report(&self, name: &str, deriv: &str, opts: &Options) -> Arc<FileReport> {
-        let key = (name.to_string(), opts.stop_at_determined_given);
-        let known = lock(&self.reports)
-            .get(&key)
-            .and_then(|m| m.get(deriv))
-            .cloned();
-        if let Some(r) = known {
-            return r;
-        }
-        let r = Arc::new(check_source(name, deriv, opts, &MemoryResolver::new()));
-        let mut reports = lock(&self.reports);
-        if key.1 && !stopped(&r) {
-            // It did not stop: it is the whole check.
-            reports
-                .entry((name.to_string(), false))
-                .or_default()
-                .insert(deriv.to_string(), r.clone());
-        }
-        reports
-            .entry(key)
-            .or_default()
-            .insert(deriv.to_string(), r.clone());
-        r
-    }
-
-    /// Whether a generated statement reads on its own (one bad statement must not stop
-    /// the rest of the document from being checked).
-    fn parses(&self, stmt: &str) -> bool {
-        let known = lock(&self.parsed).get(stmt).copied();
-        if let Some(ok) = known {
-            return ok;
-        }
-        let ok = crate::syntax::parse_file(stmt, &ParseOptions::default()).is_ok();
-        lock(&self.parsed).insert(stmt.to_string(), ok);
-        ok
-    }
-}
-
-fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
-    m.lock().unwrap_or_else(|e| e.into_inner())
 }
 
 /// The derivation made from a scope, as it is written.
@@ -477,13 +417,6 @@ const ROUNDS: usize = 6;
 /// How many times at most a scope is checked again with names the facts determine
 /// declared as unknowns (each such check stops at the first name it finds).
 const FINDING: usize = 4;
-
-/// Whether a check stopped early at a determined quantity (its report names one).
-fn stopped(r: &FileReport) -> bool {
-    r.diagnostics
-        .iter()
-        .any(|d| matches!(d.mistake, Some(Mistake::DeclaredGiven(_))))
-}
 
 /// Checks the chains of `doc`. Each heading starts a new scope: notes reuse letters
 /// from one section to the next (R a radius, then a reaction), so what one section
