@@ -23,6 +23,22 @@ pub struct Fact {
     pub name: Cited,
 }
 
+/// The facts without repeats: a fact whose value is one before it, or its negation,
+/// states nothing new (notes state a relation, then use it as stated). The first is
+/// kept, so the facts are cited as before.
+pub(super) fn distinct(facts: Vec<Fact>) -> Vec<Fact> {
+    let mut seen: HashSet<Rat> = HashSet::new();
+    let mut out = Vec::with_capacity(facts.len());
+    for f in facts {
+        if seen.contains(&f.value) || seen.contains(&f.value.neg()) {
+            continue;
+        }
+        seen.insert(f.value.clone());
+        out.push(f);
+    }
+    out
+}
+
 /// One solved unknown.
 #[derive(Clone, Debug)]
 pub struct Step {

@@ -183,6 +183,14 @@ pub struct FileReport {
 }
 
 impl FileReport {
+    /// Whether a failure names a `symbols` quantity the facts determine
+    /// (`Mistake::DeclaredGiven`): where `Options::stop_at_determined_given` stops.
+    pub fn names_determined_given(&self) -> bool {
+        self.diagnostics
+            .iter()
+            .any(|d| matches!(d.mistake, Some(crate::diag::Mistake::DeclaredGiven(_))))
+    }
+
     /// Number of links checked.
     pub fn links(&self) -> usize {
         self.claims.iter().map(|c| c.links.len()).sum()

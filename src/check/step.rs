@@ -3,7 +3,7 @@
 //! for each relation. Explaining a failure lives in `explain.rs`, inequalities and
 //! `~=` in `relations.rs`.
 
-use super::elimination::{apply_steps, eliminate, Elimination, Fact};
+use super::elimination::{apply_steps, distinct, eliminate, Elimination, Fact};
 use super::report::{Justification, Status};
 use super::walk::{unknown_atom, Checker, Known};
 use crate::clock::Deadline;
@@ -324,22 +324,6 @@ impl Checker<'_, '_> {
         };
         Err(self.not_equal(input, red, sides, &all_divs))
     }
-}
-
-/// The facts without repeats: a fact whose value is one before it, or its negation,
-/// states nothing new (notes state a relation, then use it as stated). The first is
-/// kept, so the facts are cited as before.
-fn distinct(facts: Vec<Fact>) -> Vec<Fact> {
-    let mut seen: HashSet<Rat> = HashSet::new();
-    let mut out = Vec::with_capacity(facts.len());
-    for f in facts {
-        if seen.contains(&f.value) || seen.contains(&f.value.neg()) {
-            continue;
-        }
-        seen.insert(f.value.clone());
-        out.push(f);
-    }
-    out
 }
 
 /// The work behind a link verified with the facts: the unknowns solved and the sides

@@ -153,14 +153,6 @@ impl<'l, 'o> Checker<'l, 'o> {
     }
 
     /// Checks every statement; returns the report and what the file exports.
-    /// Whether a failure so far names a `symbols` quantity the facts determine.
-    fn determined_given(&self) -> bool {
-        self.report
-            .diagnostics
-            .iter()
-            .any(|d| matches!(d.mistake, Some(crate::diag::Mistake::DeclaredGiven(_))))
-    }
-
     pub fn run(mut self, mut file: File) -> (FileReport, Exports) {
         self.line_starts = std::iter::once(0)
             .chain(self.report.source.match_indices('\n').map(|(i, _)| i + 1))
@@ -176,7 +168,8 @@ impl<'l, 'o> Checker<'l, 'o> {
                     );
                 }
                 self.statement(&st.kind, st.span);
-                if self.loader.opts.stop_at_determined_given && self.determined_given() {
+                if self.loader.opts.stop_at_determined_given && self.report.names_determined_given()
+                {
                     break;
                 }
             }

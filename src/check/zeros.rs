@@ -268,12 +268,10 @@ impl Consistent {
     ///
     /// [`contradiction`]: super::elimination::contradiction
     pub fn check(&mut self, facts: &[Fact], signs: &Assumptions) -> Option<crate::diag::Text> {
-        let mut values: Vec<Rat> = Vec::with_capacity(facts.len());
-        for f in facts {
-            if !values.iter().any(|v| *v == f.value || *v == f.value.neg()) {
-                values.push(f.value.clone());
-            }
-        }
+        let values: Vec<Rat> = super::elimination::distinct(facts.to_vec())
+            .into_iter()
+            .map(|f| f.value)
+            .collect();
         if self.signs != *signs {
             *self = Consistent {
                 signs: signs.clone(),

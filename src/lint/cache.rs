@@ -5,7 +5,6 @@
 
 use super::Options;
 use crate::check::{check_source, FileReport, MemoryResolver};
-use crate::diag::Mistake;
 use crate::syntax::ParseOptions;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
@@ -39,7 +38,7 @@ impl Checked {
         }
         let r = Arc::new(check_source(name, deriv, opts, &MemoryResolver::new()));
         let mut reports = lock(&self.reports);
-        if key.1 && !stopped(&r) {
+        if key.1 && !r.names_determined_given() {
             // It did not stop: it is the whole check.
             reports
                 .entry((name.to_string(), false))
@@ -68,11 +67,4 @@ impl Checked {
 
 fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
     m.lock().unwrap_or_else(|e| e.into_inner())
-}
-
-/// Whether a check stopped early at a determined quantity (its report names one).
-pub(super) fn stopped(r: &FileReport) -> bool {
-    r.diagnostics
-        .iter()
-        .any(|d| matches!(d.mistake, Some(Mistake::DeclaredGiven(_))))
 }

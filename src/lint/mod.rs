@@ -21,7 +21,7 @@ mod values;
 use crate::check::{FileReport, Options, Status};
 use crate::diag::{Diagnostic, LineIndex};
 use crate::syntax::ast::{Chain, Expr, ExprKind, Func, Reading, Span};
-use cache::{stopped, Checked};
+use cache::Checked;
 pub use extract::{pieces, DocKind, Piece};
 use later::{later_is_a_mistake, later_link, later_links, later_needs, Later};
 use partial::{conditions, once, report_all};
@@ -83,6 +83,19 @@ impl ChainReport {
             from: Vec::new(),
             using: Vec::new(),
         }
+    }
+
+    /// The chain turned into one that needs context for `reason`, with `message` as its
+    /// one diagnostic, where its first diagnostic was (else at the chain).
+    pub(crate) fn needs_context(&mut self, reason: Reason, message: String) {
+        let at = self
+            .diagnostics
+            .first()
+            .and_then(|d| d.primary.as_ref())
+            .map_or(self.span, |(s, _)| *s);
+        self.verdict = Verdict::NeedsContext;
+        self.reason = Some(reason);
+        self.diagnostics = vec![Diagnostic::error(Code::NotVerified, message, at, "")];
     }
 }
 
@@ -369,7 +382,7 @@ impl Scope {
                 finding += 1;
                 continue;
             }
-            if finds && stopped(&checked) {
+            if finds && checked.names_determined_given() {
                 // It stopped at a name already solved for: check it all.
                 finding = FINDING;
                 continue;

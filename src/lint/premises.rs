@@ -236,22 +236,13 @@ pub(super) fn unsigned(
         .filter(|n| positive.iter().any(|p| p == n))
         .collect();
     names.dedup();
-    let at = report
-        .diagnostics
-        .first()
-        .and_then(|d| d.primary.as_ref())
-        .map_or(report.span, |(s, _)| *s);
-    report.verdict = Verdict::NeedsContext;
-    report.reason = Some(super::Reason::Sign);
     report.comment = Some(format!("rigor: symbols {} > 0", names.join(" ")));
-    report.diagnostics = vec![Diagnostic::error(
-        Code::NotVerified,
+    report.needs_context(
+        super::Reason::Sign,
         format!(
             "needs context: this holds where {} > 0, which the notes do not declare; `rigor: symbols {} > 0` in a comment makes it checkable",
             names.join(", "),
             names.join(" ")
         ),
-        at,
-        "",
-    )];
+    );
 }

@@ -216,19 +216,10 @@ pub(super) fn premises_of(
                     .then(|| (lhs.clone(), doc.line_col(q.span.start).0))
             });
             if let Some((name, line)) = clash {
-                let at = report
-                    .diagnostics
-                    .first()
-                    .and_then(|d| d.primary.as_ref())
-                    .map_or(report.span, |(s, _)| *s);
-                report.verdict = Verdict::NeedsContext;
-                report.reason = Some(Reason::Contradiction);
-                report.diagnostics = vec![Diagnostic::error(
-                    Code::NotVerified,
+                report.needs_context(
+                    Reason::Contradiction,
                     format!("needs context: this uses {name}, which line {line} states in a way that does not fit what was stated before it"),
-                    at,
-                    "",
-                )];
+                );
             }
         }
         _ => {}
