@@ -1024,7 +1024,7 @@ mod tests {
         }
 
         #[test]
-        fn trig_against_f64(n in -4_000_000i64..4_000_000, d in 1i64..1000) {
+        fn trig_against_f64(n in -1_000_000i64..1_000_000, d in 1i64..1000) {
             // An independent sine and cosine (the platform's, within a few ulps).
             let (x, xf) = (q(n, d), n as f64 / d as f64);
             let pt = Interval::point(x);
