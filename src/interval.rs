@@ -476,24 +476,18 @@ impl Interval {
 
     /// Enclosure of `pi` (Machin's formula with alternating-series remainders).
     pub fn pi(p: Prec) -> Option<Interval> {
-        thread_local! {
-            static PI: std::cell::RefCell<Vec<(u32, Interval)>> = const { std::cell::RefCell::new(Vec::new()) };
-        }
-        if let Some(v) = PI.with(|c| {
-            c.borrow()
-                .iter()
-                .find(|e| e.0 == p.bits)
-                .map(|e| e.1.clone())
-        }) {
+        // Kept for the process (the checks of one run run on several threads): the
+        // enclosure depends on nothing but the precision.
+        static PI: Mutex<Vec<(u32, Interval)>> = Mutex::new(Vec::new());
+        let lock = || PI.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(v) = lock().iter().find(|e| e.0 == p.bits).map(|e| e.1.clone()) {
             return Some(v);
         }
         let v = Interval::pi_uncached(p)?;
-        PI.with(|c| {
-            let mut c = c.borrow_mut();
-            if c.len() < 16 {
-                c.push((p.bits, v.clone()));
-            }
-        });
+        let mut c = lock();
+        if c.len() < 16 && !c.iter().any(|e| e.0 == p.bits) {
+            c.push((p.bits, v.clone()));
+        }
         Some(v)
     }
 
@@ -697,27 +691,6 @@ fn exp_point(q: &BigRational, p: Prec) -> Option<Interval> {
     None
 }
 
-/// Taylor enclosures of `(sin r, cos r)` for an interval `r` with `|r| <= 2`.
-fn taylor_sincos(r: &Interval, wp: Prec) -> Option<(Interval, Interval)> {
-    if r.mag_bound() > rat(2) {
-        return None;
-    }
-    let tiny = two_pow(-(wp.bits as i64) - 4);
-    let (mut s, mut c) = (Interval::int(0), Interval::int(1));
-    let mut term = Interval::int(1);
-    for k in 1..MAX_TERMS {
-        term = term.mul(r, wp)?.div(&Interval::int(k as i64), wp)?;
-        let m = term.mag_bound();
-        if qlt(&m, &tiny) {
-            // Lagrange remainder: |R| <= max|r|^k / k! <= m (derivatives bounded by 1).
-            return Some((s.widen(&m), c.widen(&m)));
-        }
-        let acc = if k % 2 == 1 { &mut s } else { &mut c };
-        *acc = acc.add_signed(&term, (k / 2) % 2 == 1, wp)?;
-    }
-    None
-}
-
 /// Enclosures of `(sin q, cos q)` using reduction modulo `pi/2`.
 fn sincos_point(q: &BigRational, p: Prec) -> Option<(Interval, Interval)> {
     type Known = HashMap<(BigRational, Prec), Option<(Interval, Interval)>>;
@@ -741,17 +714,76 @@ fn sincos_point(q: &BigRational, p: Prec) -> Option<(Interval, Interval)> {
     found
 }
 
-/// [`sincos_point`], computed.
+/// `(sin x, cos x)` for `x = ax/2^w` (`0 <= ax <= 2^w`) by the Taylor series in fixed
+/// point, scaled by `2^w`, with a bound on their error in units of `2^-w`. Each term is
+/// the one before times `x/k`, floored: term `k` is off from `x^k/k!` by at most `k`
+/// units (an error of `e` units becomes at most `e x/k + 1 <= e + 1`), and the first
+/// term left out bounds the remainder (Lagrange: every derivative is bounded by 1) up
+/// to its own error. The terms summed and the one left out are off by less than
+/// `k^2 + 1` units in all.
+fn taylor_fixed(ax: &BigInt, w: usize) -> Option<(BigInt, BigInt, BigInt)> {
+    let one = BigInt::one() << w;
+    if ax.is_negative() || *ax > one {
+        return None;
+    }
+    let (mut s, mut c) = (BigInt::zero(), one.clone());
+    let mut term = one;
+    let mut k: u32 = 1;
+    loop {
+        term = ((term * ax) >> w) / BigInt::from(k);
+        if term.is_zero() {
+            break;
+        }
+        if k >= MAX_TERMS {
+            return None;
+        }
+        let acc = if k % 2 == 1 { &mut s } else { &mut c };
+        if (k / 2) % 2 == 1 {
+            *acc -= &term;
+        } else {
+            *acc += &term;
+        }
+        k += 1;
+    }
+    Some((s, c, BigInt::from(u64::from(k) * u64::from(k) + 1)))
+}
+
+/// [`sincos_point`], computed by reduction modulo `pi/2` in fixed point: with `w` bits
+/// after the point, `q 2^w` lies in `[Q, Q + 1]` and `(pi/2) 2^w` in `[H, H']` (from an
+/// enclosure of `pi`), so `r = q - j pi/2` lies in `[A, B]` units; the series is summed
+/// at a point of it, and widened by the distance to the farther end (sine and cosine
+/// move by at most the distance moved) and by its own error.
 fn sincos_enclosure(q: &BigRational, p: Prec) -> Option<(Interval, Interval)> {
     if q.abs() > rat(MAX_TRIG_ARG) {
         return None;
     }
     let wp = p.plus(40);
-    let half_pi = Interval::pi(wp)?.div(&Interval::int(2), wp)?;
-    let j = (q / half_pi.midpoint()).round().to_integer();
-    let jpi = half_pi.mul(&Interval::point(BigRational::from_integer(j.clone())), wp)?;
-    let r = Interval::point(q.clone()).sub(&jpi, wp)?;
-    let (s, c) = taylor_sincos(&r, wp)?;
+    let w = wp.eff() as usize + 16;
+    let pi = Interval::pi(Prec::new(w as u32 + 8))?;
+    let (h_lo, h_hi) = (
+        (pi.lo.numer() << (w - 1)).div_floor(pi.lo.denom()),
+        -((-(pi.hi.numer() << (w - 1))).div_floor(pi.hi.denom())),
+    );
+    let qw = (q.numer() << w).div_floor(q.denom());
+    let j = BigRational::new(qw.clone(), h_lo.clone())
+        .round()
+        .to_integer();
+    let (jh1, jh2) = (&j * &h_lo, &j * &h_hi);
+    let (jmin, jmax) = if jh1 <= jh2 { (jh1, jh2) } else { (jh2, jh1) };
+    let (a, b) = (&qw - jmax, &qw + BigInt::one() - jmin);
+    let x: BigInt = (&a + &b).div_floor(&BigInt::from(2));
+    let reach = std::cmp::max(&b - &x, &x - &a);
+    let (s, c, units) = taylor_fixed(&x.abs(), w)?;
+    let s = if x.is_negative() { -s } else { s };
+    let err = units + reach;
+    let around = |v: &BigInt| {
+        Interval::mk(
+            dyadic(v - &err, -(w as i64)),
+            dyadic(v + &err, -(w as i64)),
+            wp,
+        )
+    };
+    let (s, c) = (around(&s)?, around(&c)?);
     let res = match j.mod_floor(&BigInt::from(4)).to_u32()? {
         0 => (s, c),
         1 => (c, s.neg()?),
@@ -989,6 +1021,33 @@ mod tests {
             let s = Interval::point(a.clone()).sqrt(P).unwrap();
             prop_assert!(s.mul(&s, P).unwrap().contains(&a));
             prop_assert!(s.lo() * s.lo() <= a && a <= s.hi() * s.hi());
+        }
+
+        #[test]
+        fn trig_against_f64(n in -1_000_000i64..1_000_000, d in 1i64..1000) {
+            // An independent sine and cosine (the platform's, within a few ulps).
+            let (x, xf) = (q(n, d), n as f64 / d as f64);
+            let pt = Interval::point(x);
+            let slack = |v: f64| q((v * 2f64.powi(40)).round() as i64, 1 << 40);
+            let (s, c) = (pt.sin(P).unwrap(), pt.cos(P).unwrap());
+            let tol = q(1, 1 << 30);
+            prop_assert!(s.lo() <= &(slack(xf.sin()) + &tol) && &(slack(xf.sin()) - &tol) <= s.hi());
+            prop_assert!(c.lo() <= &(slack(xf.cos()) + &tol) && &(slack(xf.cos()) - &tol) <= c.hi());
+            prop_assert!(s.width() < two_pow(-80) && c.width() < two_pow(-80));
+        }
+
+        #[test]
+        fn fixed_point_error_bound(ax in 0u64..(1 << 40), extra in 0usize..80) {
+            // The series at 64 more bits (its own error bounded the same way) must lie
+            // within the error claimed at the lower precision.
+            let w = 40 + extra;
+            let ax = BigInt::from(ax) << extra;
+            let (s1, c1, u1) = taylor_fixed(&ax, w).unwrap();
+            let (s2, c2, u2) = taylor_fixed(&(&ax << 64), w + 64).unwrap();
+            let room: BigInt = (&u1 << 64) + &u2;
+            let (d_s, d_c): (BigInt, BigInt) = ((&s1 << 64) - &s2, (&c1 << 64) - &c2);
+            prop_assert!(d_s.abs() <= room);
+            prop_assert!(d_c.abs() <= room);
         }
 
         #[test]

@@ -16,10 +16,11 @@
 //! Every consequence is an exact identity over the reals; nothing here is sampled.
 
 use super::elimination::{zero_by_facts, Fact};
-use crate::diag::Cited;
 use crate::normal::atom;
+use crate::normal::limits::Limits;
 use crate::normal::{Assumptions, Poly, Rat, Sign};
 use std::collections::HashMap;
+use std::sync::Mutex;
 
 /// Nesting of square completions tried on one fact (one per atom completed).
 const DEPTH: usize = 6;
@@ -131,51 +132,90 @@ pub fn consequences(facts: &[Fact], signs: &Assumptions) -> Vec<Fact> {
     if facts.len() > MAX_FACTS {
         return out;
     }
-    let push = |value: Rat, name: &Cited, out: &mut Vec<Fact>| {
-        if !value.is_zero() && !out.iter().any(|f| f.value == value) {
-            out.push(Fact {
-                value,
-                name: name.clone(),
-            });
-        }
-    };
     for f in facts {
-        let n = f.value.num();
-        if n.atoms().is_empty() || !affordable(n) {
-            continue;
-        }
-        // A power is zero only where its base is. Kept factors (large powers of sums)
-        // are atoms here, so the radical holds each once and writing it out is cheap.
-        if let Ok(parts) = crate::normal::gcd::squarefree(n) {
-            let mut radical = Poly::one();
-            for (part, _) in &parts {
-                match radical.mul(part) {
-                    Ok(r) => radical = r,
-                    Err(_) => break,
-                }
-            }
-            let written = Rat::poly(radical).and_then(|r| crate::normal::power::expand(&r, signs));
-            if let Ok(r) = written {
-                if r != f.value {
-                    push(r, &f.name, &mut out);
-                }
+        for value in of_fact(&f.value, signs) {
+            if !value.is_zero() && !out.iter().any(|f| f.value == value) {
+                out.push(Fact {
+                    value,
+                    name: f.name.clone(),
+                });
             }
         }
-        if crate::normal::power::has_kept(&f.value) {
-            continue;
+    }
+    out
+}
+
+/// What one fact `value = 0` forces to zero, in the order found (repeats and zeros
+/// included), remembered for the process: the same facts come back with every given
+/// after them and in every check of the same notes. The answer depends on the value,
+/// the signs and the size limits, and on the clock only when the deadline passed while
+/// it was found — then it is not kept (a deadline never un-passes, so one that has not
+/// passed by the end did not cut anything short).
+fn of_fact(value: &Rat, signs: &Assumptions) -> Vec<Rat> {
+    type Known = HashMap<Rat, Vec<(Assumptions, Limits, Vec<Rat>)>>;
+    static KNOWN: Mutex<Option<Known>> = Mutex::new(None);
+    const KEEP: usize = 4096;
+    let limits = crate::normal::limits::current();
+    let lock = || KNOWN.lock().unwrap_or_else(|e| e.into_inner());
+    let known = lock().as_ref().and_then(|k| {
+        k.get(value)?
+            .iter()
+            .find(|(s, l, _)| s == signs && *l == limits)
+            .map(|(_, _, v)| v.clone())
+    });
+    if let Some(v) = known {
+        return v;
+    }
+    let found = of_fact_found(value, signs);
+    if crate::normal::limits::check_deadline().is_ok() {
+        let mut k = lock();
+        let k = k.get_or_insert_with(HashMap::new);
+        if k.len() >= KEEP {
+            k.clear();
         }
-        // A sum of weighted squares is zero only where each base is.
-        if let Some(sq) = squares_either(n, signs) {
-            for b in sq.bases {
-                if let Ok(r) = Rat::poly(b) {
-                    push(r, &f.name, &mut out);
-                }
+        k.entry(value.clone())
+            .or_default()
+            .push((signs.clone(), limits, found.clone()));
+    }
+    found
+}
+
+/// [`of_fact`], found.
+fn of_fact_found(value: &Rat, signs: &Assumptions) -> Vec<Rat> {
+    let mut out = Vec::new();
+    let n = value.num();
+    if n.atoms().is_empty() || !affordable(n) {
+        return out;
+    }
+    // A power is zero only where its base is. Kept factors (large powers of sums)
+    // are atoms here, so the radical holds each once and writing it out is cheap.
+    if let Ok(parts) = crate::normal::gcd::squarefree(n) {
+        let mut radical = Poly::one();
+        for (part, _) in &parts {
+            match radical.mul(part) {
+                Ok(r) => radical = r,
+                Err(_) => break,
             }
-            if sq.rest == Sign::NonNeg && !sq.rest_value.atoms().is_empty() {
-                for t in nonnegative_terms(&sq.rest_value, signs) {
-                    push(t, &f.name, &mut out);
-                }
+        }
+        let written = Rat::poly(radical).and_then(|r| crate::normal::power::expand(&r, signs));
+        if let Ok(r) = written {
+            if r != *value {
+                out.push(r);
             }
+        }
+    }
+    if crate::normal::power::has_kept(value) {
+        return out;
+    }
+    // A sum of weighted squares is zero only where each base is.
+    if let Some(sq) = squares_either(n, signs) {
+        for b in sq.bases {
+            if let Ok(r) = Rat::poly(b) {
+                out.push(r);
+            }
+        }
+        if sq.rest == Sign::NonNeg && !sq.rest_value.atoms().is_empty() {
+            out.extend(nonnegative_terms(&sq.rest_value, signs));
         }
     }
     out
@@ -358,4 +398,64 @@ pub fn definite_sign(r: &Rat, signs: &Assumptions) -> Sign {
         Sign::Unknown
     };
     num.times(den)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sym(n: &str) -> Rat {
+        Rat::atom(atom::sym(n))
+    }
+
+    /// `a x^2 - 2 a x + a`: a weighted square only where `a > 0`.
+    fn weighted() -> Rat {
+        let (a, x) = (sym("zq_a"), sym("zq_x"));
+        let x1 = x.sub(&Rat::one()).unwrap();
+        a.mul(&x1.mul(&x1).unwrap()).unwrap()
+    }
+
+    #[test]
+    fn remembered_consequences_are_those_of_the_signs_asked() {
+        let value = weighted();
+        let mut positive = Assumptions::default();
+        positive.set(atom::sym("zq_a"), Sign::Pos);
+        let unsigned = Assumptions::default();
+        // Each answer, asked twice and in turn under the other signs, is the one found
+        // afresh: the memo never answers for other signs.
+        for _ in 0..2 {
+            for signs in [&positive, &unsigned] {
+                assert_eq!(of_fact(&value, signs), of_fact_found(&value, signs));
+            }
+        }
+        assert_ne!(
+            of_fact_found(&value, &positive),
+            of_fact_found(&value, &unsigned),
+            "the signs must matter for this test to say anything"
+        );
+        assert!(!of_fact_found(&value, &positive).is_empty());
+    }
+
+    #[test]
+    fn remembered_consequences_are_those_of_the_limits_in_force() {
+        use crate::normal::limits::{install, Limits};
+        let value = weighted();
+        let mut positive = Assumptions::default();
+        positive.set(atom::sym("zq_a"), Sign::Pos);
+        let wide = of_fact(&value, &positive);
+        // Under limits too small to find anything, the answer is the small one.
+        let tiny = Limits {
+            max_terms: 1,
+            ..Limits::DEFAULT
+        };
+        let g = install(tiny);
+        let small = of_fact_found(&value, &positive);
+        assert_eq!(of_fact(&value, &positive), small);
+        drop(g);
+        assert_ne!(
+            small, wide,
+            "the limits must matter for this test to say anything"
+        );
+        assert_eq!(of_fact(&value, &positive), wide);
+    }
 }
