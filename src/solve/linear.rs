@@ -113,6 +113,15 @@ pub fn solve(a: &[Vec<Rat>], b: &[Rat]) -> Result<Vec<Rat>, LinearError> {
         }
         col_factor.push(c);
     }
+    // The unknowns in the order of elimination: the given one or its reverse (which
+    // keeps a band a band), whichever eliminates the columns with fewer terms first.
+    let reverse = eliminate_reversed(&m, n);
+    if reverse {
+        for row in m.iter_mut() {
+            row[..n].reverse();
+        }
+        col_factor.reverse();
+    }
     // Cramer's rule, x_i = det(A with column i replaced by b) / det(A), with one
     // fraction-free (Bareiss) elimination per determinant. Every intermediate entry is
     // a minor, never a minor times a whole numerator as in back substitution or the
@@ -143,7 +152,28 @@ pub fn solve(a: &[Vec<Rat>], b: &[Rat]) -> Result<Vec<Rat>, LinearError> {
         };
         out.push(Rat::new(num, den)?);
     }
+    if reverse {
+        out.reverse();
+    }
     Ok(out)
+}
+
+/// Whether eliminating the columns of `A` (the first `n` of `m`) from the last to the
+/// first puts the columns with more terms later than the given order does. Bareiss's
+/// entries are minors on the columns eliminated so far, and each numerator's last
+/// steps multiply them: the chain of rods, whose first column holds every mass and
+/// its last one mass, does 40 % fewer term products at n = 8 reversed. A band (or any
+/// order whose weights are symmetric) stays as it is.
+fn eliminate_reversed(m: &[Vec<Poly>], n: usize) -> bool {
+    let weight = |j: usize| -> usize { m.iter().filter_map(|r| r.get(j)).map(Poly::len).sum() };
+    // Σ position × weight: larger when the heavy columns come late.
+    let (mut given, mut reversed) = (0usize, 0usize);
+    for j in 0..n {
+        let w = weight(j);
+        given = given.saturating_add(j.saturating_mul(w));
+        reversed = reversed.saturating_add((n - 1 - j).saturating_mul(w));
+    }
+    reversed > given
 }
 
 /// The matrix `A` (the first `n` columns of `m`) or, for the numerator of `x_i`, `A`
@@ -187,9 +217,8 @@ fn packed_determinants(m: &[Vec<Poly>], n: usize) -> Option<(Poly, Vec<Poly>)> {
     let mut nums = Vec::with_capacity(n);
     for k in 0..n {
         // The numerator of x_k: moving column k past the n − 1 − k after it.
-        let rest: Vec<Vec<packed::P>> = m.iter().skip(k).map(|r| r[k + 1..].to_vec()).collect();
         let sign = negate != ((n - 1 - k) % 2 == 1);
-        nums.push(ring.unpack(&determinant_packed(&ring, (rest, sign), prev.clone())?));
+        nums.push(ring.unpack(&numerator_packed(&ring, m.get(k..)?, k + 1, sign, &prev)?));
         let Some(p) = pivot_row(&m, k, |e: &packed::P| e.len()) else {
             return Some((Poly::zero(), Vec::new()));
         };
@@ -226,6 +255,41 @@ fn bareiss_step_packed(
         row[k] = Vec::new();
     }
     Some(())
+}
+
+/// The determinant of `rows` from column `first` on (the rest of `[A | b]` after `k`
+/// steps, without column `k`), negated when `negate`, continuing an elimination whose
+/// last pivot was `prev`. Its first step reads the shared state and writes a matrix of
+/// its own (every entry it keeps is new: nothing is copied), [`determinant_packed`]
+/// takes the others.
+fn numerator_packed(
+    ring: &packed::Ring,
+    rows: &[Vec<packed::P>],
+    first: usize,
+    negate: bool,
+    prev: &packed::P,
+) -> Option<packed::P> {
+    let len = |r: &Vec<packed::P>| r.get(first).map_or(0, Vec::len);
+    let Some(p) = (0..rows.len())
+        .filter(|&r| len(&rows[r]) > 0)
+        .min_by_key(|&r| len(&rows[r]))
+    else {
+        return Some(Vec::new());
+    };
+    // The rows in the order a swap of rows 0 and p leaves them.
+    let mut order: Vec<usize> = (0..rows.len()).collect();
+    order.swap(0, p);
+    let pivot = rows.get(p)?;
+    let mut m = Vec::with_capacity(rows.len() - 1);
+    for &r in order.get(1..)? {
+        let row = rows.get(r)?;
+        let mut out = Vec::with_capacity(row.len().saturating_sub(first + 1));
+        for j in first + 1..row.len() {
+            out.push(ring.bareiss_entry(&pivot[first], &row[j], &row[first], &pivot[j], prev)?);
+        }
+        m.push(out);
+    }
+    determinant_packed(ring, (m, negate != (p != 0)), pivot.get(first)?.clone())
 }
 
 /// [`determinant`] on packed polynomials, continuing an elimination whose last pivot
