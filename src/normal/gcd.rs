@@ -164,7 +164,9 @@ fn div_exact_packed(
 }
 
 /// `gcd(a, b)` when evaluation proves it a monomial: the monomial (the common part of
-/// the two monomial contents). For every atom `v` in both, the other atoms are set to
+/// the two monomial contents). For every atom `v` in both whose exponent varies in both
+/// (an atom with one exponent throughout one of them leaves it with its monomial
+/// content, so `G` below cannot contain it), the other atoms are set to
 /// values modulo the prime 2⁶¹ − 1 at which neither leading coefficient in `v`
 /// vanishes, and the univariate images, with `v`'s power in the monomial content
 /// divided out, have a gcd of degree 0. (If `G` divides both polynomials without their
