@@ -484,8 +484,10 @@ mod tests {
     /// factors (random, some of them the same atom), and now and then a zero row or a
     /// zero column: `(A, b)`.
     fn any_scaled_system() -> impl Strategy<Value = (Vec<Vec<Rat>>, Vec<Rat>)> {
-        let mono = proptest::collection::vec((0u32..4, 1u32..3), 0..2);
-        (1usize..=3).prop_flat_map(move |n| {
+        let mono = proptest::collection::vec((0u32..4, 1u32..2), 0..2);
+        // n ≤ 2: the reference's gcds (recursive PRS on unreduced Cramer quotients)
+        // stay fast on every draw.
+        (1usize..=2).prop_flat_map(move |n| {
             (
                 proptest::collection::vec(proptest::collection::vec(any_poly(), n + 1), n),
                 proptest::collection::vec(1i64..=3, n),
