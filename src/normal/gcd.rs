@@ -164,24 +164,40 @@ fn div_exact_packed(
 }
 
 /// `gcd(a, b)` when evaluation proves it a monomial: the monomial (the common part of
-/// the two monomial contents). For every atom `v` in both, the other atoms are set to
+/// the two monomial contents). For every atom `v` in both whose exponent varies in both
+/// (an atom with one exponent throughout one of them leaves it with its monomial
+/// content, so `G` below cannot contain it), the other atoms are set to
 /// values modulo the prime 2⁶¹ − 1 at which neither leading coefficient in `v`
 /// vanishes, and the univariate images, with `v`'s power in the monomial content
 /// divided out, have a gcd of degree 0. (If `G` divides both polynomials without their
 /// monomial contents, its image divides both images and keeps its degree in `v`.) This
 /// only ever proves; `None` means "not shown", and the exact gcd runs.
 fn monomial_gcd_by_evaluation(a: &Poly, b: &Poly) -> Option<Mono> {
-    let (da, db) = (super::pack::degrees(a), super::pack::degrees(b));
-    let vars: Vec<AtomId> = da
-        .iter()
-        .filter(|(v, _)| db.binary_search_by_key(v, |t| t.0).is_ok())
-        .map(|&(v, _)| v)
-        .collect();
-    // The exponents of `vars` in the two monomial contents (the same at every point).
-    let mut contents: Option<(Vec<u32>, Vec<u32>)> = None;
-    let mut pending = vars.clone();
+    let (ra, rb) = (exponent_ranges(a), exponent_ranges(b));
+    // The common part of the monomial contents, and the atoms to check: those whose
+    // exponent varies in both (in one where it does not, `v` leaves with its monomial
+    // content, and `G` cannot contain it).
+    let mut gm = Vec::new();
+    let mut vars = Vec::new();
+    for &(v, la, ha) in &ra {
+        let Ok(i) = rb.binary_search_by_key(&v, |t| t.0) else {
+            continue;
+        };
+        let &(_, lb, hb) = rb.get(i)?;
+        if la.min(lb) > 0 {
+            gm.push((v, la.min(lb)));
+        }
+        if u64::from(la) < ha && u64::from(lb) < hb {
+            vars.push(v);
+        }
+    }
+    let (da, db): (Vec<_>, Vec<_>) = (
+        ra.iter().map(|&(v, _, h)| (v, h)).collect(),
+        rb.iter().map(|&(v, _, h)| (v, h)).collect(),
+    );
+    let mut pending = vars;
     for attempt in 0..3u64 {
-        if pending.is_empty() && contents.is_some() {
+        if pending.is_empty() {
             break;
         }
         let value = |x: AtomId| -> u64 {
@@ -189,11 +205,8 @@ fn monomial_gcd_by_evaluation(a: &Poly, b: &Poly) -> Option<Mono> {
                 ^ attempt.wrapping_mul(0xD6E8_FEB8_6659_FD93);
             h % (P - 2) + 2
         };
-        let (ia, ca) = images(a, &da, &pending, &value)?;
-        let (ib, cb) = images(b, &db, &pending, &value)?;
-        if contents.is_none() {
-            contents = Some((ca, cb));
-        }
+        let (ia, _) = images(a, &da, &pending, &value)?;
+        let (ib, _) = images(b, &db, &pending, &value)?;
         let mut unsettled = Vec::new();
         for ((v, ua), ub) in pending.into_iter().zip(ia).zip(ib) {
             match (ua, ub) {
@@ -208,17 +221,50 @@ fn monomial_gcd_by_evaluation(a: &Poly, b: &Poly) -> Option<Mono> {
         }
         pending = unsettled;
     }
-    let (ca, cb) = contents?;
     if !pending.is_empty() {
         return None;
     }
-    let gm = vars
-        .iter()
-        .zip(ca.iter().zip(&cb))
-        .map(|(&v, (&x, &y))| (v, x.min(y)))
-        .filter(|t| t.1 > 0)
-        .collect();
     Mono::from_pairs(gm)
+}
+
+/// Every atom of `p` (ascending) with its exponent in the monomial content (the least
+/// over the terms, 0 when a term lacks it) and its degree.
+fn exponent_ranges(p: &Poly) -> Vec<(AtomId, u32, u64)> {
+    // (terms containing the atom, least exponent there, largest)
+    let mut seen: BTreeMap<AtomId, (usize, u32, u32)> = BTreeMap::new();
+    let (mut lo, mut hi) = (u32::MAX, 0);
+    for (m, _) in p.terms() {
+        if let (Some(first), Some(last)) = (m.pairs().first(), m.pairs().last()) {
+            lo = lo.min(first.0.index());
+            hi = hi.max(last.0.index());
+        }
+    }
+    let mut table: Vec<(usize, u32, u32)> = if lo <= hi && hi - lo < 4096 {
+        vec![(0, u32::MAX, 0); (hi - lo) as usize + 1]
+    } else {
+        Vec::new()
+    };
+    for (m, _) in p.terms() {
+        for &(x, e) in m.pairs() {
+            let slot = match table.get_mut(x.index().wrapping_sub(lo) as usize) {
+                Some(slot) => slot,
+                None => seen.entry(x).or_insert((0, u32::MAX, 0)),
+            };
+            *slot = (slot.0 + 1, slot.1.min(e), slot.2.max(e));
+        }
+    }
+    let n = p.len();
+    let row = |x: AtomId, (count, least, most): (usize, u32, u32)| {
+        (x, if count == n { least } else { 0 }, u64::from(most))
+    };
+    if table.is_empty() {
+        return seen.into_iter().map(|(x, s)| row(x, s)).collect();
+    }
+    (lo..=hi)
+        .zip(table)
+        .filter(|t| t.1 .0 > 0)
+        .map(|(x, s)| row(AtomId::from_index(x), s))
+        .collect()
 }
 
 /// What [`images`] finds: one image per atom (`None` where a leading coefficient

@@ -253,6 +253,19 @@ impl Poly {
         }
     }
 
+    /// `q · self`, reusing `self`'s terms (their monomials are not copied).
+    pub(crate) fn into_scaled(mut self, q: &Q) -> Poly {
+        if q.is_zero() {
+            return Poly::zero();
+        }
+        if !q.is_one() {
+            for t in &mut self.terms {
+                t.1 = super::qops::mul(&t.1, q);
+            }
+        }
+        self
+    }
+
     /// `q · m · self`.
     pub fn mul_term(&self, m: &Mono, q: &Q) -> Result<Poly, Limit> {
         if q.is_zero() {

@@ -87,8 +87,8 @@ impl Rat {
         let lc = den.lead().map(|t| t.1.clone()).unwrap_or_else(Q::one);
         let inv = lc.recip();
         Ok(Rat {
-            num: num.scale(&inv),
-            den: den.scale(&inv),
+            num: num.into_scaled(&inv),
+            den: den.into_scaled(&inv),
         })
     }
 

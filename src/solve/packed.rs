@@ -110,11 +110,7 @@ impl Ring {
 
     /// `(a·b − c·d) / prev`, `None` on overflow, a term limit, or an inexact division.
     pub(super) fn bareiss_entry(&self, a: &P, b: &P, c: &P, d: &P, prev: &P) -> Option<P> {
-        let t = if c.is_empty() || d.is_empty() {
-            mul(a, b)?
-        } else {
-            sub(&mul(a, b)?, &mul(c, d)?)?
-        };
+        let t = mul_sub(a, b, c, d)?;
         self.div_exact(&t, prev)
     }
 
@@ -125,7 +121,33 @@ impl Ring {
         }
         let (&(mb, cb), rest) = b.split_last()?;
         if rest.is_empty() {
-            // A monomial divisor (1 included): term by term.
+            // A monomial divisor (1 included): term by term, with no division of the
+            // coefficients by ±1 and a machine-word one when both fit 64 bits.
+            if cb == 1 || cb == -1 {
+                return a
+                    .iter()
+                    .map(|&(m, c)| {
+                        Some((
+                            self.div_mono(m, mb)?,
+                            if cb == 1 { c } else { c.checked_neg()? },
+                        ))
+                    })
+                    .collect();
+            }
+            if let Ok(cb) = i64::try_from(cb) {
+                let small = |c: i128| i64::try_from(c).ok();
+                if a.iter().all(|t| small(t.1).is_some()) {
+                    return a
+                        .iter()
+                        .map(|&(m, c)| {
+                            let c = small(c)?;
+                            // checked: i64::MIN / −1 overflows.
+                            (c.checked_rem(cb)? == 0).then_some(())?;
+                            Some((self.div_mono(m, mb)?, i128::from(c.checked_div(cb)?)))
+                        })
+                        .collect();
+                }
+            }
             return a
                 .iter()
                 .map(|&(m, c)| {
@@ -171,46 +193,61 @@ impl Ring {
 }
 
 /// The product, `None` on overflow or past the term limit.
-///
-/// Each term of the shorter factor times the longer one is a sorted list; the lists
-/// are added pairwise, like the runs of a bottom-up merge sort (a stack in which two
-/// sums of the same number of lists merge), so the result comes out sorted with
-/// `O(N log k)` comparisons and no hashing (`N` products, `k` lists).
+#[cfg(test)]
 fn mul(a: &P, b: &P) -> Option<P> {
-    if a.is_empty() || b.is_empty() {
-        return Some(Vec::new());
-    }
-    let (small, big) = if a.len() <= b.len() { (a, b) } else { (b, a) };
-    // One bound for every product: when the largest coefficients' product fits, none
-    // of the term products is checked again.
-    let big_max = big.iter().map(|t| t.1.unsigned_abs()).max()?;
-    let small_max = small.iter().map(|t| t.1.unsigned_abs()).max()?;
-    let fits = big_max
-        .checked_mul(small_max)
-        .is_some_and(|p| p <= i128::MAX as u128);
-    let shifted = |&(m, c): &(u128, i128)| -> Option<P> {
-        // The fields hold the sum of two bounded degrees: no carry, order kept.
-        if fits {
-            return Some(big.iter().map(|&(k, d)| (k + m, d * c)).collect());
-        }
-        big.iter()
-            .map(|&(k, d)| Some((k + m, d.checked_mul(c)?)))
-            .collect()
-    };
+    mul_sub(a, b, &[], &[])
+}
+
+/// `a·b − c·d`, `None` on overflow or past the term limit.
+///
+/// Each term of a product's shorter factor times the longer one is a sorted list (the
+/// second product's negated); the lists of both products are added pairwise, like the
+/// runs of a bottom-up merge sort (a stack in which two sums of the same number of
+/// lists merge), so the difference comes out sorted with `O(N log k)` comparisons and
+/// no hashing (`N` products, `k` lists), and terms the two products cancel go in the
+/// merges rather than in a subtraction of two stored products.
+fn mul_sub(
+    a: &[(u128, i128)],
+    b: &[(u128, i128)],
+    c: &[(u128, i128)],
+    d: &[(u128, i128)],
+) -> Option<P> {
     // (number of lists summed, their sum)
     let mut stack: Vec<(usize, P)> = Vec::new();
-    for t in small {
-        let mut run = (1usize, shifted(t)?);
-        while stack.last().is_some_and(|top| top.0 == run.0) {
-            let top = stack.pop()?;
-            run = (top.0 + run.0, add(&top.1, &run.1)?);
-            if run.1.len() > max_terms() || check_deadline().is_err() {
-                return None;
-            }
+    for (x, y, negate) in [(a, b, false), (c, d, true)] {
+        if x.is_empty() || y.is_empty() {
+            continue;
         }
-        stack.push(run);
+        let (small, big) = if x.len() <= y.len() { (x, y) } else { (y, x) };
+        // One bound for every product: when the largest coefficients' product fits,
+        // none of the term products is checked again.
+        let big_max = big.iter().map(|t| t.1.unsigned_abs()).max()?;
+        let small_max = small.iter().map(|t| t.1.unsigned_abs()).max()?;
+        let fits = big_max
+            .checked_mul(small_max)
+            .is_some_and(|p| p <= i128::MAX as u128);
+        for &(m, k) in small {
+            let k = if negate { k.checked_neg()? } else { k };
+            // The fields hold the sum of two bounded degrees: no carry, order kept.
+            let list: P = if fits {
+                big.iter().map(|&(e, f)| (e + m, f * k)).collect()
+            } else {
+                big.iter()
+                    .map(|&(e, f)| Some((e + m, f.checked_mul(k)?)))
+                    .collect::<Option<P>>()?
+            };
+            let mut run = (1usize, list);
+            while stack.last().is_some_and(|top| top.0 == run.0) {
+                let top = stack.pop()?;
+                run = (top.0 + run.0, add(&top.1, &run.1)?);
+                if run.1.len() > max_terms() || check_deadline().is_err() {
+                    return None;
+                }
+            }
+            stack.push(run);
+        }
     }
-    let mut out = stack.pop()?.1;
+    let mut out = stack.pop().map(|t| t.1).unwrap_or_default();
     while let Some(top) = stack.pop() {
         out = add(&top.1, &out)?;
         if out.len() > max_terms() {
@@ -241,38 +278,6 @@ fn add(mut a: &[(u128, i128)], mut b: &[(u128, i128)]) -> Option<P> {
     }
     out.extend_from_slice(a);
     out.extend_from_slice(b);
-    Some(out)
-}
-
-/// `a − b`, `None` on overflow.
-fn sub(a: &P, b: &P) -> Option<P> {
-    let mut out = Vec::with_capacity(a.len() + b.len());
-    let (mut i, mut j) = (0, 0);
-    while i < a.len() || j < b.len() {
-        match (a.get(i), b.get(j)) {
-            (Some(&x), Some(&y)) if x.0 == y.0 => {
-                let c = x.1.checked_sub(y.1)?;
-                if c != 0 {
-                    out.push((x.0, c));
-                }
-                i += 1;
-                j += 1;
-            }
-            (Some(&x), Some(&y)) if x.0 < y.0 => {
-                out.push(x);
-                i += 1;
-            }
-            (Some(&x), None) => {
-                out.push(x);
-                i += 1;
-            }
-            (_, Some(&y)) => {
-                out.push((y.0, y.1.checked_neg()?));
-                j += 1;
-            }
-            (None, None) => break,
-        }
-    }
     Some(out)
 }
 
