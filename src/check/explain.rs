@@ -97,7 +97,9 @@ impl Checker<'_, '_> {
             if tied.is_empty() {
                 let reduce = |r: &Rat| apply_steps(r, &steps, signs);
                 return Ok(match (reduce(&red.a), reduce(&red.b)) {
-                    (Ok(x), Ok(y)) => Some((x, y, steps)),
+                    (Ok(x), Ok(y)) => {
+                        Some(fixed_by_facts((x, y, steps), &left, &is_unknown, signs))
+                    }
                     _ => None,
                 });
             }
@@ -182,15 +184,18 @@ impl Checker<'_, '_> {
                 )
                 .ok()
             };
-            let Some((rest, _, _)) = elim(&red.diff) else {
+            let Some((rest, steps, _)) = elim(&red.diff) else {
                 continue;
             };
-            if !rest.is_zero() {
+            // Not when solving divided by a quantity the facts make zero: that proves
+            // nothing (the facts may not determine it at all).
+            if !rest.is_zero() || self.zero_divisor(&steps, &red.scope).is_some() {
                 continue;
             }
             // Its value from the facts, if they give it in terms of the parameters.
             let value = elim(&Rat::atom(x)).and_then(|(v, steps, _)| {
-                let free = !v.atoms().iter().any(|a| is_unknown(*a));
+                let free = !v.atoms().iter().any(|a| is_unknown(*a))
+                    && self.zero_divisor(&steps, &red.scope).is_none();
                 let mut from: Vec<Cited> = steps.iter().map(|s| s.fact.clone()).collect();
                 from.dedup();
                 free.then(|| {
@@ -264,15 +269,27 @@ impl Checker<'_, '_> {
     fn free_state_sides(&self, red: &Reduced) -> Option<Sides> {
         let signs = &self.env.signs;
         let is_unknown = |x: AtomId| unknown_atom(&self.scope, x);
-        let (target, steps, left) = super::elimination::eliminate_all(
-            &red.diff,
-            &red.scope,
-            &is_unknown,
-            signs,
-            None,
-            false,
-        )
-        .ok()?;
+        let all = |diff: &Rat, facts: &[super::elimination::Fact]| {
+            super::elimination::eliminate_all(diff, facts, &is_unknown, signs, None, false).ok()
+        };
+        let (mut target, mut steps, mut left) = all(&red.diff, &red.scope)?;
+        // Sides found by dividing by a quantity the facts make zero say nothing: solve
+        // after the parameters the facts fix, or give no sides.
+        if let Some(zero) = self.zero_divisor(&steps, &red.scope) {
+            let (mut first, diff, facts) = super::elimination::parameters_substituted(
+                &red.diff,
+                &red.scope,
+                (&is_unknown, &zero),
+                signs,
+            )
+            .ok()?;
+            (target, steps, left) = all(&diff, &facts)?;
+            first.append(&mut steps);
+            steps = first;
+            if self.zero_divisor(&steps, &red.scope).is_some() {
+                return None;
+            }
+        }
         // Facts left over constrain nothing that an unknown absent from the difference
         // can absorb (`M = -m g d sin(theta)` only says what M is); any other quantity
         // they constrain must be absent from the difference.
@@ -332,7 +349,7 @@ impl Checker<'_, '_> {
             };
             t.and(tail)
         };
-        let notes = side_notes(red, (&ra, &rb));
+        let notes = side_notes(red, (&ra, &rb), &steps);
         let with_notes = |mut d: Diagnostic, extra: Vec<Note>| {
             d.notes = notes.iter().cloned().chain(extra).collect();
             d
@@ -368,8 +385,23 @@ impl Checker<'_, '_> {
         }
         // The guard re-checks that a counterexample satisfies every declaration as
         // written before it is printed (then, below, that the sides differ there).
+        // Where a fact fixes a parameter (`I_G = m R^2/2`), the sides are defined where
+        // their conditions are with that value: the counterexample gives it no other.
+        let is_unknown = |x: AtomId| unknown_atom(&self.scope, x);
+        let params: Vec<Step> = steps
+            .iter()
+            .filter(|s| !is_unknown(s.unknown))
+            .cloned()
+            .collect();
+        let defined: Vec<Condition> = defined
+            .iter()
+            .map(|(r, need)| {
+                let r2 = apply_steps(r, &params, &self.env.signs);
+                (r2.unwrap_or_else(|_| r.clone()), *need)
+            })
+            .collect();
         let verdict = crate::decide::guarded(
-            crate::decide::decide_where(&ra, &rb, &self.env.signs, defined),
+            crate::decide::decide_where(&ra, &rb, &self.env.signs, &defined),
             |point| crate::guard::respects(&self.guard_env, point),
         );
         match verdict {
@@ -488,7 +520,7 @@ impl Checker<'_, '_> {
 }
 
 /// Both sides as written, and (when facts were used) as the facts reduce them.
-fn side_notes(red: &Reduced, (ra, rb): (&Rat, &Rat)) -> Vec<Note> {
+fn side_notes(red: &Reduced, (ra, rb): (&Rat, &Rat), steps: &[Step]) -> Vec<Note> {
     let mut notes = vec![
         Note::Side {
             left: true,
@@ -499,9 +531,17 @@ fn side_notes(red: &Reduced, (ra, rb): (&Rat, &Rat)) -> Vec<Note> {
             value: short(&plain(&red.b)),
         },
     ];
-    if !red.via.is_empty() {
+    // The facts the sides shown were reduced with: the link's, and any more a
+    // refutation used (a parameter a fact fixes).
+    let mut using = red.via.clone();
+    for s in steps {
+        if !using.contains(&s.fact.fact) {
+            using.push(s.fact.fact.clone());
+        }
+    }
+    if !using.is_empty() {
         notes.push(Note::Reduced {
-            using: red.via.clone(),
+            using,
             left: plain(ra),
             right: plain(rb),
         });
@@ -583,6 +623,34 @@ fn them(atoms: &[AtomId]) -> &'static str {
 }
 
 /// The quantities of `target` (symbols, moments) that the facts left over still tie.
+/// The sides `x`, `y` of a refutation with the parameters that facts left over fix
+/// substituted (their steps added), when a side holds one: a counterexample is a point
+/// where the facts hold, so `I_G` is not given a value of its own where a fact says
+/// `I_G = m R^2/2`, even when the difference of the sides does not hold `I_G`.
+fn fixed_by_facts(
+    (x, y, mut steps): Sides,
+    left: &[Fact],
+    is_unknown: &dyn Fn(AtomId) -> bool,
+    signs: &crate::normal::Assumptions,
+) -> Sides {
+    let fixed = |r: &Rat| !tied_atoms(r, left, is_unknown, signs).is_empty();
+    if !fixed(&x) && !fixed(&y) {
+        return (x, y, steps);
+    }
+    let Ok((more, _, _)) =
+        super::elimination::parameters_substituted(&x, left, (is_unknown, &x), signs)
+    else {
+        return (x, y, steps);
+    };
+    match (apply_steps(&x, &more, signs), apply_steps(&y, &more, signs)) {
+        (Ok(x2), Ok(y2)) if !more.is_empty() => {
+            steps.extend(more);
+            (x2, y2, steps)
+        }
+        _ => (x, y, steps),
+    }
+}
+
 fn tied_atoms(
     target: &Rat,
     left: &[Fact],

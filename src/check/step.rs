@@ -231,6 +231,9 @@ impl Checker<'_, '_> {
         } else {
             let e = eliminate(&diff, &used, &is_unknown, signs, input.deadline);
             let e = e.map(|e| moments_solved(e, &diff, &used, &is_unknown, signs, input.deadline));
+            let e = e.map(|e| {
+                self.parameters_first(e, &diff, (&used, &scope), &is_unknown, input.deadline)
+            });
             Some(e.map_err(|e| match e {
                 crate::normal::NormError::DivisionByZero => Diagnostic::error(
                     Code::DivisionByZero,
@@ -276,6 +279,68 @@ impl Checker<'_, '_> {
             via,
             used_names,
         }))
+    }
+
+    /// The divisor of a step of an elimination (`steps`) that the facts in `scope` make
+    /// zero, if one is.
+    pub(super) fn zero_divisor(
+        &self,
+        steps: &[super::elimination::Step],
+        scope: &[Fact],
+    ) -> Option<Rat> {
+        let signs = &self.env.signs;
+        steps.iter().find_map(|s| {
+            let d = s.divisor.as_ref()?;
+            let reduced = apply_steps(d, steps, signs).unwrap_or_else(|_| d.clone());
+            let zero = reduced.is_zero()
+                || super::zeros::forced_zero_in(
+                    &reduced,
+                    scope,
+                    signs,
+                    &mut self.zero_memo.borrow_mut(),
+                );
+            zero.then(|| d.clone())
+        })
+    }
+
+    /// The elimination `e`, or, when one of its steps divides by a quantity the facts
+    /// make zero, the elimination with the parameters the facts fix substituted first
+    /// ([`super::elimination::parameters_substituted`]) if none of its steps does: a
+    /// law solved for `x''` may divide by `I_G - m R^2/2`, which a given `I_G = m R^2/2`
+    /// makes zero, where solving after that given does not divide by it.
+    fn parameters_first(
+        &self,
+        e: Elimination,
+        diff: &Rat,
+        (used, scope): (&[Fact], &[Fact]),
+        is_unknown: &dyn Fn(AtomId) -> bool,
+        deadline: Option<Deadline>,
+    ) -> Elimination {
+        let signs = &self.env.signs;
+        if e.timed_out || e.contradiction.is_some() {
+            return e;
+        }
+        let Some(zero) = self.zero_divisor(&e.steps, scope) else {
+            return e;
+        };
+        let again =
+            super::elimination::parameters_substituted(diff, used, (is_unknown, &zero), signs)
+                .and_then(|(mut steps, target, facts)| {
+                    let mut p = eliminate(&target, &facts, is_unknown, signs, deadline)?;
+                    steps.append(&mut p.steps);
+                    p.steps = steps;
+                    Ok(p)
+                });
+        match again {
+            Ok(p)
+                if !p.timed_out
+                    && p.contradiction.is_none()
+                    && self.zero_divisor(&p.steps, scope).is_none() =>
+            {
+                p
+            }
+            _ => e,
+        }
     }
 
     /// Facts that contradict each other prove anything: refuse to use them.

@@ -3,7 +3,8 @@
 //! the cosine of a product, `\times` between quantities a cross product. Each note in
 //! `tests/lint/readings_*.md` has one chain per reading; each chain's verdict is
 //! asserted at its line. `tests/lint/zero_divisors.md`: divisors that the stated
-//! relations force to zero through an identity (issue 27, item 1).
+//! relations force to zero through an identity (issue 27, item 1). `readings_given_value.md`:
+//! a value the notes give, used before a law that would otherwise divide by zero.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -128,4 +129,28 @@ fn a_divisor_the_stated_relations_force_to_zero_is_never_assumed_nonzero() {
         assert!(text.contains(&at), "{at}\n{text}");
         assert!(text.contains("which the facts make zero"), "{text}");
     }
+}
+
+#[test]
+fn a_value_the_notes_give_is_used_before_a_law_that_would_divide_by_zero_without_it() {
+    // `F = I_G x''/R^2 = m x''/2` holds x'' times I_G/R^2 - m/2, which the stated
+    // `I_G = m R^2/2` makes zero: solving that for x'' first left lines 17 and 19
+    // "needs context" and hid the wrong factor on line 28. The value is now substituted
+    // first when the first way divides by zero; and solving that way no longer counts
+    // as the facts determining g (g = 0), which made lint take g for an unknown and left
+    // line 24 "needs context".
+    expect(
+        "tests/lint/readings_given_value.md",
+        &[
+            (6, "needs context"),
+            (8, "needs context"),
+            (13, "verified"),
+            (17, "verified"),
+            (19, "verified"),
+            (21, "defines"),
+            (24, "verified"),
+            (28, "FAILED"),
+        ],
+        1,
+    );
 }
