@@ -134,76 +134,6 @@ pub fn eliminate(
     Ok(Elimination { steps, ..second })
 }
 
-/// The parameters that facts free of unknowns fix, substituted first in the target and in
-/// every other fact: `I_G = m R^2/2` before a law that, solved alone for `x''`, divides
-/// by `I_G - m R^2/2`. A fact is solved only for a symbol it holds to the first power
-/// with a coefficient the signs make nonzero (no condition), preferring one in `zero`,
-/// the divisor an elimination could not use. An elimination of the result's target and
-/// facts goes after its steps: [`apply_steps`] replays them in order.
-pub fn parameters_substituted(
-    target: &Rat,
-    facts: &[Fact],
-    (is_unknown, zero): (&dyn Fn(AtomId) -> bool, &Rat),
-    signs: &Assumptions,
-) -> Result<(Vec<Step>, Rat, Vec<Fact>), NormError> {
-    let in_zero = zero.atoms();
-    let mut steps: Vec<Step> = Vec::new();
-    let mut others: Vec<Fact> = Vec::new();
-    for f in facts {
-        let value = apply_steps(&f.value, &steps, signs)?;
-        let atoms = value.atoms();
-        let mut candidates: Vec<AtomId> = if atoms.iter().any(|a| is_unknown(*a)) {
-            Vec::new()
-        } else {
-            atoms
-                .iter()
-                .copied()
-                .filter(|a| atom::sym_str(*a).is_some())
-                .collect()
-        };
-        candidates.sort_by(|a, b| {
-            (!in_zero.contains(a))
-                .cmp(&!in_zero.contains(b))
-                .then_with(|| atom::cmp_atoms(*a, *b))
-        });
-        let mut solved = None;
-        for q in candidates {
-            match setup(&value, q, signs)? {
-                Some(s) if s.deg == 1 && s.divisor.is_none() => {
-                    solved = Some((q, finish(&s, signs)?.value));
-                    break;
-                }
-                _ => {}
-            }
-        }
-        match solved {
-            Some((q, v)) => steps.push(Step {
-                unknown: q,
-                value: v,
-                fact: f.name.clone(),
-                divisor: None,
-            }),
-            None => others.push(Fact {
-                value,
-                name: f.name.clone(),
-            }),
-        }
-    }
-    // A fact met before a parameter was solved still holds that parameter.
-    let others = others
-        .into_iter()
-        .filter_map(|f| {
-            let value = apply_steps(&f.value, &steps, signs).ok()?;
-            (!value.is_zero()).then_some(Fact {
-                value,
-                name: f.name,
-            })
-        })
-        .collect();
-    let target = apply_steps(target, &steps, signs)?;
-    Ok((steps, target, others))
-}
-
 /// After an elimination that left the target nonzero: a fact left over (the
 /// elimination's steps applied) of which the target is a multiple, `target = r · fact`.
 /// Where the fact holds and `r` is defined the target is zero, so the step follows when
@@ -591,25 +521,25 @@ fn unknowns_within(r: &Rat, is_unknown: &dyn Fn(AtomId) -> bool, out: &mut Vec<A
 }
 
 #[derive(Clone)]
-struct Solution {
-    value: Rat,
+pub(super) struct Solution {
+    pub(super) value: Rat,
     divisor: Option<Rat>,
 }
 
 /// `f = 0` as `lead · u^deg + rest = 0`, before the division that solves it.
 #[derive(Clone)]
-struct Setup {
+pub(super) struct Setup {
     lead: Rat,
     rest: Rat,
-    deg: u32,
+    pub(super) deg: u32,
     /// The divisor of the solution, when the signs do not make it nonzero.
-    divisor: Option<Rat>,
+    pub(super) divisor: Option<Rat>,
 }
 
 /// Whether `f = 0` can be solved for `u` — when `f` is linear in `u`, or (for a
 /// positive unknown) involves `u` only as `u^n` — and how: everything but the division
 /// ([`finish`]), which only the pair chosen needs.
-fn setup(f: &Rat, u: AtomId, signs: &Assumptions) -> Result<Option<Setup>, NormError> {
+pub(super) fn setup(f: &Rat, u: AtomId, signs: &Assumptions) -> Result<Option<Setup>, NormError> {
     let n = f.num();
     if !n.contains(u) {
         return Ok(None);
@@ -645,7 +575,7 @@ fn setup(f: &Rat, u: AtomId, signs: &Assumptions) -> Result<Option<Setup>, NormE
 }
 
 /// The solution set up by [`setup`].
-fn finish(s: &Setup, signs: &Assumptions) -> Result<Solution, NormError> {
+pub(super) fn finish(s: &Setup, signs: &Assumptions) -> Result<Solution, NormError> {
     let base = s.rest.neg().div(&s.lead)?;
     let value = if s.deg == 1 {
         base

@@ -276,7 +276,7 @@ impl Checker<'_, '_> {
         // Sides found by dividing by a quantity the facts make zero say nothing: solve
         // after the parameters the facts fix, or give no sides.
         if let Some(zero) = self.zero_divisor(&steps, &red.scope) {
-            let (mut first, diff, facts) = super::elimination::parameters_substituted(
+            let (mut first, diff, facts) = super::parameters::parameters_substituted(
                 &red.diff,
                 &red.scope,
                 (&is_unknown, &zero),
@@ -385,21 +385,7 @@ impl Checker<'_, '_> {
         }
         // The guard re-checks that a counterexample satisfies every declaration as
         // written before it is printed (then, below, that the sides differ there).
-        // Where a fact fixes a parameter (`I_G = m R^2/2`), the sides are defined where
-        // their conditions are with that value: the counterexample gives it no other.
-        let is_unknown = |x: AtomId| unknown_atom(&self.scope, x);
-        let params: Vec<Step> = steps
-            .iter()
-            .filter(|s| !is_unknown(s.unknown))
-            .cloned()
-            .collect();
-        let defined: Vec<Condition> = defined
-            .iter()
-            .map(|(r, need)| {
-                let r2 = apply_steps(r, &params, &self.env.signs);
-                (r2.unwrap_or_else(|_| r.clone()), *need)
-            })
-            .collect();
+        let defined = self.defined_with_parameters(defined, &steps);
         let verdict = crate::decide::guarded(
             crate::decide::decide_where(&ra, &rb, &self.env.signs, &defined),
             |point| crate::guard::respects(&self.guard_env, point),
@@ -454,6 +440,24 @@ impl Checker<'_, '_> {
                 Vec::new(),
             ),
         }
+    }
+
+    /// Where a fact fixes a parameter (`I_G = m R^2/2`, a step of `steps` for a symbol
+    /// that is not an unknown), the sides are defined where their conditions are with
+    /// that value: the counterexample gives the parameter no other.
+    fn defined_with_parameters(&self, defined: &[Condition], steps: &[Step]) -> Vec<Condition> {
+        let params: Vec<Step> = steps
+            .iter()
+            .filter(|s| !unknown_atom(&self.scope, s.unknown))
+            .cloned()
+            .collect();
+        defined
+            .iter()
+            .map(|(r, need)| {
+                let r2 = apply_steps(r, &params, &self.env.signs);
+                (r2.unwrap_or_else(|_| r.clone()), *need)
+            })
+            .collect()
     }
 
     /// Unknowns that no fact in scope determines: which, and (when a fact gives one only
@@ -638,7 +642,7 @@ fn fixed_by_facts(
         return (x, y, steps);
     }
     let Ok((more, _, _)) =
-        super::elimination::parameters_substituted(&x, left, (is_unknown, &x), signs)
+        super::parameters::parameters_substituted(&x, left, (is_unknown, &x), signs)
     else {
         return (x, y, steps);
     };

@@ -30,6 +30,7 @@ pub mod elimination;
 mod entry;
 mod explain;
 mod imports;
+mod parameters;
 mod reading;
 mod relations;
 pub mod report;

@@ -305,7 +305,7 @@ impl Checker<'_, '_> {
 
     /// The elimination `e`, or, when one of its steps divides by a quantity the facts
     /// make zero, the elimination with the parameters the facts fix substituted first
-    /// ([`super::elimination::parameters_substituted`]) if none of its steps does: a
+    /// ([`super::parameters::parameters_substituted`]) if none of its steps does: a
     /// law solved for `x''` may divide by `I_G - m R^2/2`, which a given `I_G = m R^2/2`
     /// makes zero, where solving after that given does not divide by it.
     fn parameters_first(
@@ -324,7 +324,7 @@ impl Checker<'_, '_> {
             return e;
         };
         let again =
-            super::elimination::parameters_substituted(diff, used, (is_unknown, &zero), signs)
+            super::parameters::parameters_substituted(diff, used, (is_unknown, &zero), signs)
                 .and_then(|(mut steps, target, facts)| {
                     let mut p = eliminate(&target, &facts, is_unknown, signs, deadline)?;
                     steps.append(&mut p.steps);
