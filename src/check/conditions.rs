@@ -6,7 +6,6 @@
 use super::signs::{essential_factor, sign_of};
 use super::step::{LinkInput, Reduced};
 use super::walk::Checker;
-use super::zeros::forced_zero_in;
 use crate::diag::Diagnostic;
 use crate::diag::{Cited, Code, Text};
 use crate::lower::{Condition, Need};
@@ -114,13 +113,7 @@ impl Checker<'_, '_> {
         let reduced =
             super::elimination::apply_steps(d, steps, signs).unwrap_or_else(|_| d.clone());
         if need == Need::NonZero {
-            let zero = reduced.is_zero()
-                || forced_zero_in(
-                    &reduced,
-                    &red.scope,
-                    signs,
-                    &mut self.zero_memo.borrow_mut(),
-                );
+            let zero = self.zero_by(&reduced, &red.scope);
             if zero && elimination {
                 // rigor's own way of solving the facts divided by zero: that says nothing
                 // about the step, which may well hold (solved another way).

@@ -292,15 +292,20 @@ impl Checker<'_, '_> {
         steps.iter().find_map(|s| {
             let d = s.divisor.as_ref()?;
             let reduced = apply_steps(d, steps, signs).unwrap_or_else(|_| d.clone());
-            let zero = reduced.is_zero()
-                || super::zeros::forced_zero_in(
-                    &reduced,
-                    scope,
-                    signs,
-                    &mut self.zero_memo.borrow_mut(),
-                );
-            zero.then(|| d.clone())
+            self.zero_by(&reduced, scope).then(|| d.clone())
         })
+    }
+
+    /// Whether `d` (the elimination's steps applied) is zero, or the facts in `scope`
+    /// force it to zero.
+    pub(super) fn zero_by(&self, d: &Rat, scope: &[Fact]) -> bool {
+        d.is_zero()
+            || super::zeros::forced_zero_in(
+                d,
+                scope,
+                &self.env.signs,
+                &mut self.zero_memo.borrow_mut(),
+            )
     }
 
     /// The elimination `e`, or, when one of its steps divides by a quantity the facts
