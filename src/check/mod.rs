@@ -40,6 +40,7 @@ mod signs;
 mod step;
 mod terms;
 mod walk;
+mod witness;
 mod zeros;
 
 pub(crate) use entry::normalise;

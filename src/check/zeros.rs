@@ -254,6 +254,8 @@ pub struct ZeroMemo {
     /// Whether a value is zero by the facts (`false`) or by the facts and their
     /// consequences (`true`).
     zero: HashMap<(Rat, bool), bool>,
+    /// A point where the facts hold, once looked for.
+    witness: Option<Option<std::sync::Arc<super::witness::Point>>>,
 }
 
 impl ZeroMemo {
@@ -321,7 +323,12 @@ impl Consistent {
         if self.sets.contains(&values) {
             return None;
         }
-        let found = super::elimination::contradiction(facts, signs);
+        // Facts that hold together at a point (with the signs) contradict nothing.
+        let found = if super::witness::remembered(facts, signs).is_some() {
+            None
+        } else {
+            super::elimination::contradiction(facts, signs)
+        };
         if found.is_none() {
             if self.sets.len() >= Self::KEEP {
                 self.sets.remove(0);
@@ -337,6 +344,13 @@ impl Consistent {
 /// `sin^2 + cos^2 = 1`). What `memo` found under the same facts and signs is reused.
 pub fn forced_zero_in(d: &Rat, facts: &[Fact], signs: &Assumptions, memo: &mut ZeroMemo) -> bool {
     memo.under(facts, signs);
+    // A point where the facts hold and `d` does not vanish settles it at once.
+    let witness = memo
+        .witness
+        .get_or_insert_with(|| super::witness::remembered(facts, signs));
+    if witness.as_ref().is_some_and(|p| p.nonzero_at(d, signs)) {
+        return false;
+    }
     if memo.zero(d, facts, false, signs) {
         return true;
     }
