@@ -57,7 +57,13 @@ fn forces_zero(
     // relation that forces `m g \sin\beta` to zero is then seen to force `\sin\beta`
     // to zero (or contradicts the signs), with no division left in doubt.
     let nonzero = |upto: usize| super::premises::nonzero(b.deriv.get(..upto).unwrap_or_default());
-    let (before, with) = (nonzero(start), nonzero(end));
+    // The claims a given restates bring nothing the given does not: they are left out.
+    let (before, with) = (
+        restated_left_out(&nonzero(start)),
+        restated_left_out(&nonzero(end)),
+    );
+    // The stated relation's own line, the last of `with`.
+    let own = with.len().saturating_sub(end - start);
     let zero_after = |prefix: &str| {
         let deriv = format!("{prefix}{stmt}");
         let report = b.cache.report(name, &deriv, opts);
@@ -70,12 +76,33 @@ fn forces_zero(
             d.code == Code::FalseFacts
                 && d.primary
                     .as_ref()
-                    .is_some_and(|(s, _)| s.start >= before.len() && s.start < prefix.len())
+                    .is_some_and(|(s, _)| s.start >= own && s.start < prefix.len())
         });
         (claimed, contradicts)
     };
     let (zero, contradicts) = zero_after(&with);
     (zero || contradicts) && !zero_after(&before).0
+}
+
+/// `deriv` without each claim that the line after it states again as a given (the
+/// linter writes a chain's first link as both): the given brings the same relation
+/// whether or not the claim holds, so what follows the pair is checked as before, and
+/// the claim is not checked for nothing.
+fn restated_left_out(deriv: &str) -> String {
+    let lines: Vec<&str> = deriv.split_inclusive('\n').collect();
+    let mut out = String::with_capacity(deriv.len());
+    for (i, l) in lines.iter().enumerate() {
+        let restated = l.strip_prefix("claim ").is_some_and(|rest| {
+            lines
+                .get(i + 1)
+                .and_then(|n| n.strip_prefix("given "))
+                .is_some_and(|g| g == rest)
+        });
+        if !restated {
+            out.push_str(l);
+        }
+    }
+    out
 }
 
 /// The links (their starts in the document) whose stated relations must not be
@@ -223,5 +250,32 @@ pub(super) fn premises_of(
             }
         }
         _ => {}
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::restated_left_out;
+
+    #[test]
+    fn only_claims_the_next_given_restates_are_left_out() {
+        let deriv = "symbols m g\n\
+                     claim $$ a = g/2 $$\n\
+                     given $$ a = g/2 $$\n\
+                     claim $$ b = 2 a $$\n\
+                     given $$ b = 3 a $$\n\
+                     claim $$ c = a $$\n\
+                     constraint $$ c = a $$\n\
+                     claim $$ d = b $$\n";
+        assert_eq!(
+            restated_left_out(deriv),
+            "symbols m g\n\
+             given $$ a = g/2 $$\n\
+             claim $$ b = 2 a $$\n\
+             given $$ b = 3 a $$\n\
+             claim $$ c = a $$\n\
+             constraint $$ c = a $$\n\
+             claim $$ d = b $$\n"
+        );
     }
 }
