@@ -214,6 +214,9 @@ struct Build<'a> {
     /// stated: they contradict what was stated before them, or they are mistakes
     /// (`sound::unfit`).
     skip: &'a HashSet<usize>,
+    /// With a set: only the chains starting there keep the claim of a first link that
+    /// a given states again (`Scope::build_with`).
+    keep: Option<&'a HashSet<usize>>,
     /// The definitions of earlier sections written into this derivation: name, the
     /// definition as the notes write it, and where it starts in the document.
     carried: Vec<(String, String, usize)>,
@@ -242,17 +245,19 @@ impl Scope {
         cache: &'a Checked,
         carry: bool,
     ) -> Build<'a> {
-        self.build_with(doc, sets, (cache, carry), None)
+        self.build_with(doc, sets, (cache, carry), (None, None))
     }
 
     /// The derivation made from the scope, with `extra` (a `rigor:` statement and the
-    /// names it declares) after the document's statements.
+    /// names it declares) after the document's statements; with `keep`, only the chains
+    /// starting there keep the claim of a first link that a given states again (the
+    /// others' verdicts are not wanted: the given brings the same relation).
     fn build_with<'a>(
         &self,
         doc: &str,
         (time, solve, skip): (&'a HashSet<String>, &'a HashSet<String>, &'a HashSet<usize>),
         (cache, carry): (&'a Checked, bool),
-        extra: Option<&(String, Vec<String>)>,
+        (extra, keep): (Option<&Extra>, Option<&'a HashSet<usize>>),
     ) -> Build<'a> {
         let mut b = Build {
             deriv: self.directives.clone(),
@@ -265,6 +270,7 @@ impl Scope {
             cache,
             imposing: false,
             skip,
+            keep,
             carried: Vec::new(),
             carry,
         };
@@ -419,6 +425,9 @@ impl Scope {
     }
 }
 
+/// A `rigor:` statement written into a scope's derivation, with the names it declares.
+type Extra = (String, Vec<String>);
+
 /// The sets a scope's derivation is built with: names written with a derivative, names
 /// to solve for, links not taken as stated.
 type Sets<'a> = (&'a HashSet<String>, &'a HashSet<String>, &'a HashSet<usize>);
@@ -509,6 +518,7 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
         cache,
         imposing,
         skip,
+        keep,
         ..
     } = b;
     let mut names = first_link_names(chain);
@@ -565,12 +575,18 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
             // Checked as a claim; then, holding or not, taken as what the notes state —
             // unless every symbol is one the document declared: then it is a step, a
             // fact once verified, and a mistake (never a fact) if not.
-            let claim = write("claim", &first_link, deriv);
             let kw = if constraint { "constraint" } else { "given" };
-            stated = if (firm && !constraint) || skip.contains(&chain.first.span.start) {
+            let restated = (!firm || constraint) && !skip.contains(&chain.first.span.start);
+            let wanted = keep.is_none_or(|k| k.contains(&chain.first.span.start));
+            let claim = if restated && !constraint && !wanted {
                 None
             } else {
+                write("claim", &first_link, deriv)
+            };
+            stated = if restated {
                 write(kw, &first_link, deriv)
+            } else {
+                None
             };
             (claim, lone(&chain.first))
         }

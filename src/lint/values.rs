@@ -70,6 +70,23 @@ pub(super) fn suggest(
     if scope.values.is_empty() {
         return;
     }
+    // The chains whose verdict may change: only their claims are checked again.
+    let open: HashSet<usize> = b
+        .placed
+        .iter()
+        .filter(|p| {
+            out.iter().any(|r| {
+                r.span.end == p.span.end
+                    && r.verdict == Verdict::NeedsContext
+                    && r.comment.is_none()
+                    && settles(r.reason)
+            })
+        })
+        .map(|p| p.span.start)
+        .collect();
+    if open.is_empty() {
+        return;
+    }
     for (i, p) in b.placed.iter().enumerate() {
         let Some(r) = out.iter_mut().find(|r| {
             r.span.end == p.span.end
@@ -99,7 +116,7 @@ pub(super) fn suggest(
                 continue;
             }
             let extra = (text, used_names(v).unwrap_or_default());
-            let again = scope.build_with(doc, sets, (cache, b.carry), Some(&extra));
+            let again = scope.build_with(doc, sets, (cache, b.carry), (Some(&extra), Some(&open)));
             let Some(q) = again.placed.get(i) else {
                 continue;
             };
