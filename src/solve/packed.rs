@@ -12,7 +12,7 @@
 use crate::normal::limits::{check_deadline, max_terms};
 use crate::normal::mono::Mono;
 use crate::normal::pack::{degrees, Packing};
-use crate::normal::{Poly, Q};
+use crate::normal::{AtomId, Poly, Q};
 use num_bigint::BigInt;
 use num_traits::{One, ToPrimitive};
 use std::collections::btree_map::Entry;
@@ -29,6 +29,10 @@ pub(super) struct Ring {
     /// The lowest bit of every field: a subtraction that borrows into one of these bits
     /// took a larger exponent from a smaller one in the field below.
     low: u128,
+    /// `(atom, shift, width)` of every field, ascending (read off the packing).
+    fields: Vec<(AtomId, u32, u32)>,
+    /// The field each bit belongs to.
+    field_of_bit: [u8; 128],
 }
 
 impl Ring {
@@ -62,10 +66,104 @@ impl Ring {
             .collect::<Option<Vec<_>>>()?;
         let limit = pk.pack(&Mono::from_pairs(limit)?)?;
         let mut low = 0u128;
+        let mut fields = Vec::with_capacity(bound.len());
         for &a in bound.keys() {
-            low |= pk.pack(&Mono::atom(a, 1))?;
+            let bit = pk.pack(&Mono::atom(a, 1))?;
+            low |= bit;
+            fields.push((a, bit.trailing_zeros(), 0));
         }
-        Some(Ring { pk, limit, low })
+        // A field reaches the next one's lowest bit (the last, the top of the word).
+        let mut field_of_bit = [0u8; 128];
+        for i in 0..fields.len() {
+            let end = fields.get(i + 1).map_or(128, |f| f.1);
+            let start = fields.get(i)?.1;
+            fields.get_mut(i)?.2 = end.checked_sub(start)?;
+            for slot in field_of_bit.get_mut(start as usize..end as usize)? {
+                *slot = u8::try_from(i).ok()?;
+            }
+        }
+        Some(Ring {
+            pk,
+            limit,
+            low,
+            fields,
+            field_of_bit,
+        })
+    }
+
+    /// The monomial of a packed one: only its nonzero fields are visited.
+    fn unpack_mono(&self, k: u128) -> Mono {
+        let mut pairs = Vec::with_capacity(k.count_ones().min(16) as usize);
+        let mut rest = k;
+        while rest != 0 {
+            let bit = rest.trailing_zeros();
+            let f = self.field_of_bit.get(bit as usize).copied().unwrap_or(0);
+            let Some(&(a, shift, width)) = self.fields.get(usize::from(f)) else {
+                break;
+            };
+            let mask = u128::MAX >> (128 - width);
+            // Every field below bit 32 of its exponent: a degree bound is a u32.
+            pairs.push((a, ((k >> shift) & mask) as u32));
+            rest &= !(mask << shift);
+        }
+        Mono::from_sorted_pairs(pairs)
+    }
+
+    /// The exponent of `a` in the packed monomial `k` (0 for an atom with no field).
+    fn exponent(&self, k: u128, a: AtomId) -> u32 {
+        match self.fields.binary_search_by_key(&a, |f| f.0) {
+            Ok(i) => self.fields.get(i).map_or(0, |&(_, shift, width)| {
+                ((k >> shift) & (u128::MAX >> (128 - width))) as u32
+            }),
+            Err(_) => 0,
+        }
+    }
+
+    /// The largest monomial dividing `full` and every term of `p` (nonzero), and its
+    /// packed form.
+    pub(super) fn common_content(&self, p: &P, full: &Mono) -> Option<(Mono, u128)> {
+        let mut g: Vec<(AtomId, u32)> = full
+            .pairs()
+            .iter()
+            .filter(|t| self.fields.binary_search_by_key(&t.0, |f| f.0).is_ok())
+            .copied()
+            .collect();
+        for &(k, _) in p {
+            if g.is_empty() {
+                break;
+            }
+            for slot in &mut g {
+                slot.1 = slot.1.min(self.exponent(k, slot.0));
+            }
+            g.retain(|t| t.1 > 0);
+        }
+        let g = Mono::from_pairs(g)?;
+        let packed = self.pk.pack(&g)?;
+        Some((g, packed))
+    }
+
+    /// `p / (g · kappa)` as a polynomial, for a monomial `g` (packed) dividing every
+    /// term and a nonzero `kappa`: each coefficient reduced in machine words when
+    /// they suffice. `None` when `g` does not divide a term.
+    pub(super) fn unpack_over(&self, p: &P, g: u128, kappa: &BigInt) -> Option<Poly> {
+        let small = kappa.to_i128().filter(|k| *k != i128::MIN);
+        let mut terms = Vec::with_capacity(p.len());
+        for &(k, c) in p {
+            let m = self.unpack_mono(self.div_mono(k, g)?);
+            let q = match small {
+                Some(kp) => {
+                    let d = gcd_i128(c, kp);
+                    let (mut n, mut den) = (c / d, kp / d);
+                    if den < 0 {
+                        (n, den) = (n.checked_neg()?, -den);
+                    }
+                    Q::new_raw(BigInt::from(n), BigInt::from(den))
+                }
+                None => Q::new(BigInt::from(c), kappa.clone()),
+            };
+            terms.push((m, q));
+        }
+        Some(Poly::from_sorted_terms(terms))
     }
 
     /// The monomial `a / b` when `b` divides `a` and every exponent of the quotient is
@@ -103,7 +201,7 @@ impl Ring {
     pub(super) fn unpack(&self, p: &P) -> Poly {
         Poly::from_sorted_terms(
             p.iter()
-                .map(|&(k, c)| (self.pk.unpack(k), Q::from_integer(BigInt::from(c))))
+                .map(|&(k, c)| (self.unpack_mono(k), Q::from_integer(BigInt::from(c))))
                 .collect(),
         )
     }
@@ -192,6 +290,17 @@ impl Ring {
     }
 }
 
+/// The greatest common divisor of two integers, positive (`b` nonzero, neither
+/// `i128::MIN`).
+fn gcd_i128(a: i128, b: i128) -> i128 {
+    let (mut a, mut b) = (a.unsigned_abs(), b.unsigned_abs());
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    // At most |b| ≤ i128::MAX.
+    a as i128
+}
+
 /// The product, `None` on overflow or past the term limit.
 #[cfg(test)]
 fn mul(a: &P, b: &P) -> Option<P> {
@@ -200,20 +309,19 @@ fn mul(a: &P, b: &P) -> Option<P> {
 
 /// `a·b − c·d`, `None` on overflow or past the term limit.
 ///
-/// Each term of a product's shorter factor times the longer one is a sorted list (the
-/// second product's negated); the lists of both products are added pairwise, like the
-/// runs of a bottom-up merge sort (a stack in which two sums of the same number of
-/// lists merge), so the difference comes out sorted with `O(N log k)` comparisons and
-/// no hashing (`N` products, `k` lists), and terms the two products cancel go in the
-/// merges rather than in a subtraction of two stored products.
+/// Every term product is added into an open-addressing table keyed by the packed
+/// monomial (the entries in a dense list, the table holding their positions), and the
+/// terms left nonzero are sorted once at the end. Bareiss's products cancel heavily
+/// (on the chain of rods, some 24,000 term products leave 286 terms), so the table
+/// stays small and each product costs one probe, where merging the sorted partial
+/// products costs a comparison per level of the merge.
 fn mul_sub(
     a: &[(u128, i128)],
     b: &[(u128, i128)],
     c: &[(u128, i128)],
     d: &[(u128, i128)],
 ) -> Option<P> {
-    // (number of lists summed, their sum)
-    let mut stack: Vec<(usize, P)> = Vec::new();
+    let mut acc = Accumulator::new(a.len() + b.len() + c.len() + d.len());
     for (x, y, negate) in [(a, b, false), (c, d, true)] {
         if x.is_empty() || y.is_empty() {
             continue;
@@ -229,56 +337,95 @@ fn mul_sub(
         for &(m, k) in small {
             let k = if negate { k.checked_neg()? } else { k };
             // The fields hold the sum of two bounded degrees: no carry, order kept.
-            let list: P = if fits {
-                big.iter().map(|&(e, f)| (e + m, f * k)).collect()
-            } else {
-                big.iter()
-                    .map(|&(e, f)| Some((e + m, f.checked_mul(k)?)))
-                    .collect::<Option<P>>()?
-            };
-            let mut run = (1usize, list);
-            while stack.last().is_some_and(|top| top.0 == run.0) {
-                let top = stack.pop()?;
-                run = (top.0 + run.0, add(&top.1, &run.1)?);
-                if run.1.len() > max_terms() || check_deadline().is_err() {
-                    return None;
-                }
+            for &(e, f) in big {
+                let v = if fits { f * k } else { f.checked_mul(k)? };
+                acc.add(e + m, v)?;
             }
-            stack.push(run);
+            if acc.entries.len() > max_terms() || check_deadline().is_err() {
+                return None;
+            }
         }
     }
-    let mut out = stack.pop().map(|t| t.1).unwrap_or_default();
-    while let Some(top) = stack.pop() {
-        out = add(&top.1, &out)?;
-        if out.len() > max_terms() {
-            return None;
-        }
-    }
-    Some(out)
+    Some(acc.into_sorted())
 }
 
-/// `a + b`, `None` on overflow.
-fn add(mut a: &[(u128, i128)], mut b: &[(u128, i128)]) -> Option<P> {
-    let mut out = Vec::with_capacity(a.len() + b.len());
-    while let ([x, ra @ ..], [y, rb @ ..]) = (a, b) {
-        if x.0 < y.0 {
-            out.push(*x);
-            a = ra;
-        } else if x.0 > y.0 {
-            out.push(*y);
-            b = rb;
-        } else {
-            let c = x.1.checked_add(y.1)?;
-            if c != 0 {
-                out.push((x.0, c));
-            }
-            a = ra;
-            b = rb;
+/// Terms added by monomial: a dense list of `(monomial, coefficient)` and a table of
+/// positions in it (`0` empty, `i + 1` the entry `i`), probed linearly from a
+/// multiplicative hash, doubled when half full.
+struct Accumulator {
+    entries: Vec<(u128, i128)>,
+    table: Vec<u32>,
+    /// `64 − log2(table.len())`: the hash's top bits index the table.
+    shift: u32,
+}
+
+impl Accumulator {
+    /// An empty accumulator sized for about `hint` distinct monomials.
+    fn new(hint: usize) -> Accumulator {
+        let bits = (hint.max(8) * 2).next_power_of_two().trailing_zeros().min(30);
+        Accumulator {
+            entries: Vec::with_capacity(hint),
+            table: vec![0; 1 << bits],
+            shift: 64 - bits,
         }
     }
-    out.extend_from_slice(a);
-    out.extend_from_slice(b);
-    Some(out)
+
+    fn slot(&self, key: u128) -> usize {
+        let h = ((key as u64) ^ ((key >> 64) as u64).rotate_left(29))
+            .wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        (h >> self.shift) as usize
+    }
+
+    /// Adds `v` to the coefficient of `key`; `None` on overflow.
+    fn add(&mut self, key: u128, v: i128) -> Option<()> {
+        let mask = self.table.len() - 1;
+        let mut i = self.slot(key);
+        loop {
+            let at = *self.table.get(i)?;
+            if at == 0 {
+                break;
+            }
+            let entry = self.entries.get_mut(at as usize - 1)?;
+            if entry.0 == key {
+                entry.1 = entry.1.checked_add(v)?;
+                return Some(());
+            }
+            i = (i + 1) & mask;
+        }
+        self.entries.push((key, v));
+        *self.table.get_mut(i)? = u32::try_from(self.entries.len()).ok()?;
+        if self.entries.len() * 2 > self.table.len() {
+            self.grow()?;
+        }
+        Some(())
+    }
+
+    /// Doubles the table and places every entry again.
+    fn grow(&mut self) -> Option<()> {
+        let bits = 64 - self.shift + 1;
+        if bits > 31 {
+            return None;
+        }
+        self.table = vec![0; 1 << bits];
+        self.shift = 64 - bits;
+        let mask = self.table.len() - 1;
+        for (n, &(key, _)) in self.entries.iter().enumerate() {
+            let mut i = self.slot(key);
+            while *self.table.get(i)? != 0 {
+                i = (i + 1) & mask;
+            }
+            *self.table.get_mut(i)? = u32::try_from(n + 1).ok()?;
+        }
+        Some(())
+    }
+
+    /// The nonzero terms, ascending.
+    fn into_sorted(self) -> P {
+        let mut out = self.entries;
+        out.retain(|t| t.1 != 0);
+        out.sort_unstable_by_key(|t| t.0);
+        out
+    }
 }
 
 #[cfg(test)]
