@@ -853,6 +853,24 @@ mod tests {
         }
     }
 
+    proptest! {
+        /// A multiple of a polynomial linear in an atom is never shown not to be one,
+        /// and whatever is shown not to be a multiple is not.
+        #[test]
+        fn non_divisibility_is_never_claimed_wrongly(a in poly(), b in poly(), q in poly(), r in poly()) {
+            let x = Poly::atom(crate::normal::AtomId::from_index(7));
+            let d = a.mul(&x).unwrap_or_else(|_| Poly::zero()).add(&b);
+            let Some(f) = super::LinearFactor::new(d.clone(), crate::normal::AtomId::from_index(7)) else {
+                return Ok(());
+            };
+            let n = d.mul(&q).unwrap_or_else(|_| Poly::zero());
+            prop_assert!(!f.shown_not_to_divide(&n));
+            if f.shown_not_to_divide(&r) {
+                prop_assert_eq!(div_exact(&r, &d), Ok(None));
+            }
+        }
+    }
+
     #[test]
     fn mersenne_reduction_matches_division() {
         let samples = [

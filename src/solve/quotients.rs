@@ -182,3 +182,121 @@ fn common_content(p: &Poly, full: &Mono) -> Option<Mono> {
     }
     Mono::from_pairs(g)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_bigint::BigInt;
+    use proptest::prelude::*;
+
+    /// A polynomial from `(atom, exponent)` lists and integer coefficients.
+    fn poly(terms: &[(Vec<(u32, u32)>, i64)]) -> Poly {
+        Poly::from_terms(
+            terms
+                .iter()
+                .filter_map(|(m, c)| {
+                    let m = m.iter().map(|&(a, e)| (AtomId::from_index(a), e));
+                    Some((
+                        Mono::from_pairs(m.collect())?,
+                        Q::from_integer(BigInt::from(*c)),
+                    ))
+                })
+                .collect(),
+        )
+    }
+
+    /// A polynomial in atoms `from..4`.
+    fn any_poly(from: u32) -> impl Strategy<Value = Poly> {
+        let term = (
+            proptest::collection::vec((from..4, 1u32..3), 0..3),
+            -4i64..=4,
+        );
+        proptest::collection::vec(term, 1..4).prop_map(|t| poly(&t))
+    }
+
+    fn any_mono() -> impl Strategy<Value = Mono> {
+        proptest::collection::vec((0u32..4, 1u32..3), 0..3).prop_map(|p| {
+            Mono::from_pairs(p.into_iter().map(|(a, e)| (AtomId::from_index(a), e)).collect())
+                .unwrap_or_else(Mono::one)
+        })
+    }
+
+    /// `κ · M · (a·x₀ + b)` and a numerator: random, or a multiple of the linear factor.
+    fn any_case() -> impl Strategy<Value = (Poly, Poly, Mono)> {
+        (
+            any_poly(1),
+            any_poly(1),
+            any_poly(1),
+            -3i64..=3,
+            any_mono(),
+            any_mono(),
+            any_poly(0),
+            any::<bool>(),
+        )
+            .prop_map(|(a, b, second, kappa, m, c, r, multiple)| {
+                let x = Poly::atom(AtomId::from_index(0));
+                let ok = |p: Result<Poly, Limit>| p.unwrap_or_else(|_| Poly::zero());
+                let mut p = ok(a.mul(&x)).add(&b);
+                if kappa == 0 {
+                    // A reducible determinant now and then: the factor twice over.
+                    p = ok(p.mul(&second.add(&x)));
+                }
+                let det = ok(p.mul_term(&m, &Q::from_integer(BigInt::from(kappa.max(1)))));
+                let num = if multiple { ok(r.mul(&p)) } else { r };
+                (det, num, c)
+            })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(400))]
+
+        /// Whenever the proof about the determinant is made, each quotient is the
+        /// canonical form `Rat::new` gives.
+        #[test]
+        fn quotient_is_rat_new((det, num, c) in any_case()) {
+            if det.is_zero() {
+                return Ok(());
+            }
+            let Ok(Some(d)) = Denominator::new(&det) else {
+                return Ok(());
+            };
+            let want = det
+                .mul_term(&c, &Q::from_integer(BigInt::from(1)))
+                .map_err(|e| TestCaseError::fail(format!("{e}")))
+                .and_then(|den| {
+                    Rat::new(num.clone(), den).map_err(|e| TestCaseError::fail(format!("{e}")))
+                })?;
+            let got = d.quotient(num, &c).map_err(|e| TestCaseError::fail(format!("{e}")))?;
+            prop_assert_eq!(got, want);
+        }
+    }
+
+    /// The proof is made for a determinant linear in an atom with coprime
+    /// coefficients, and refused for one with a repeated factor; a multiple of the
+    /// factor cancels it.
+    #[test]
+    fn irreducible_and_reducible_determinants() {
+        let x = |i: u32| Poly::atom(AtomId::from_index(i));
+        let ok = |p: Result<Poly, Limit>| p.unwrap_or_else(|e| panic!("{e}"));
+        // 2·x₁·(x₀ x₂ + x₃): linear in x₀, coefficients x₂ and x₃ coprime.
+        let p = ok(x(0).mul(&x(2))).add(&x(3));
+        let det = ok(ok(p.mul(&x(1))).mul(&Poly::int(2)));
+        let d = match Denominator::new(&det) {
+            Ok(Some(d)) => d,
+            _ => panic!("the proof about an irreducible determinant"),
+        };
+        let num = ok(p.mul(&x(1)));
+        let r = d.quotient(num, &Mono::one()).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(r, Rat::constant(Q::new(BigInt::from(1), BigInt::from(2))));
+        // (x₀ + x₁)²: every atom of degree 2, no proof.
+        let sq = ok(x(0).add(&x(1)).mul(&x(0).add(&x(1))));
+        assert!(matches!(Denominator::new(&sq), Ok(None)));
+        // x₀ x₂ + x₁ x₂ = x₂ (x₀ + x₁): the monomial factor leaves P = x₀ + x₁.
+        let det = ok(x(0).mul(&x(2))).add(&ok(x(1).mul(&x(2))));
+        assert!(matches!(Denominator::new(&det), Ok(Some(_))));
+        // (x₀ x₂ + x₁ x₂ + x₀ + x₁) = (x₂ + 1)(x₀ + x₁): linear in x₀ with coefficients
+        // x₂ + 1 and x₁ x₂ + x₁, which share x₂ + 1.
+        let det = ok(x(2).add(&Poly::one()).mul(&x(0).add(&x(1))));
+        assert!(matches!(Denominator::new(&det), Ok(None)));
+    }
+}
