@@ -93,7 +93,8 @@ impl Ring {
 
     /// The monomial of a packed one: only its nonzero fields are visited.
     fn unpack_mono(&self, k: u128) -> Mono {
-        let mut pairs = Vec::with_capacity(k.count_ones().min(16) as usize);
+        // At most one pair per set bit: no reallocation.
+        let mut pairs = Vec::with_capacity(k.count_ones() as usize);
         let mut rest = k;
         while rest != 0 {
             let bit = rest.trailing_zeros();
@@ -109,16 +110,6 @@ impl Ring {
         Mono::from_sorted_pairs(pairs)
     }
 
-    /// The exponent of `a` in the packed monomial `k` (0 for an atom with no field).
-    fn exponent(&self, k: u128, a: AtomId) -> u32 {
-        match self.fields.binary_search_by_key(&a, |f| f.0) {
-            Ok(i) => self.fields.get(i).map_or(0, |&(_, shift, width)| {
-                ((k >> shift) & (u128::MAX >> (128 - width))) as u32
-            }),
-            Err(_) => 0,
-        }
-    }
-
     /// The largest monomial dividing `full` and every term of `p` (nonzero), and its
     /// packed form.
     pub(super) fn common_content(&self, p: &P, full: &Mono) -> Option<(Mono, u128)> {
@@ -128,14 +119,28 @@ impl Ring {
             .filter(|t| self.fields.binary_search_by_key(&t.0, |f| f.0).is_ok())
             .copied()
             .collect();
+        // Each atom's field: (shift, mask), found once.
+        let mut at: Vec<(u32, u128)> = g
+            .iter()
+            .filter_map(|t| {
+                let i = self.fields.binary_search_by_key(&t.0, |f| f.0).ok()?;
+                let &(_, shift, width) = self.fields.get(i)?;
+                Some((shift, u128::MAX >> (128 - width)))
+            })
+            .collect();
         for &(k, _) in p {
             if g.is_empty() {
                 break;
             }
-            for slot in &mut g {
-                slot.1 = slot.1.min(self.exponent(k, slot.0));
+            for (slot, &(shift, mask)) in g.iter_mut().zip(&at) {
+                slot.1 = slot.1.min(((k >> shift) & mask) as u32);
             }
-            g.retain(|t| t.1 > 0);
+            if g.iter().any(|t| t.1 == 0) {
+                let keep: Vec<bool> = g.iter().map(|t| t.1 > 0).collect();
+                let mut it = keep.iter();
+                at.retain(|_| it.next().copied().unwrap_or(false));
+                g.retain(|t| t.1 > 0);
+            }
         }
         let g = Mono::from_pairs(g)?;
         let packed = self.pk.pack(&g)?;
@@ -209,7 +214,49 @@ impl Ring {
     /// `(a·b − c·d) / prev`, `None` on overflow, a term limit, or an inexact division.
     pub(super) fn bareiss_entry(&self, a: &P, b: &P, c: &P, d: &P, prev: &P) -> Option<P> {
         let t = mul_sub(a, b, c, d)?;
-        self.div_exact(&t, prev)
+        match prev.as_slice() {
+            [(mb, cb)] => self.div_by_term(t, *mb, *cb),
+            _ => self.div_exact(&t, prev),
+        }
+    }
+
+    /// `a / (cb·mb)` in place, `None` when a term is not divisible (as
+    /// [`Ring::div_exact`] for a one-term divisor, without a new list); the
+    /// coefficients are divided in machine words when they fit.
+    fn div_by_term(&self, mut a: P, mb: u128, cb: i128) -> Option<P> {
+        if mb != 0 {
+            for t in &mut a {
+                t.0 = self.div_mono(t.0, mb)?;
+            }
+        }
+        match cb {
+            1 => {}
+            -1 => {
+                for t in &mut a {
+                    t.1 = t.1.checked_neg()?;
+                }
+            }
+            _ => {
+                let words = i64::try_from(cb).ok().filter(|_| {
+                    a.iter().all(|t| i64::try_from(t.1).is_ok())
+                });
+                for t in &mut a {
+                    t.1 = match words {
+                        // checked: i64::MIN / −1 overflows.
+                        Some(w) => {
+                            let c = t.1 as i64;
+                            (c.checked_rem(w)? == 0).then_some(())?;
+                            i128::from(c.checked_div(w)?)
+                        }
+                        None => {
+                            (t.1.checked_rem(cb)? == 0).then_some(())?;
+                            t.1.checked_div(cb)?
+                        }
+                    };
+                }
+            }
+        }
+        Some(a)
     }
 
     /// `a / b` when `b` divides `a` with every quotient exponent within the bound.
