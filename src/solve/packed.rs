@@ -29,8 +29,9 @@ pub(super) struct Ring {
     /// The lowest bit of every field: a subtraction that borrows into one of these bits
     /// took a larger exponent from a smaller one in the field below.
     low: u128,
-    /// `(atom, shift, width)` of every field, ascending (read off the packing).
-    fields: Vec<(AtomId, u32, u32)>,
+    /// `(atom, shift, mask)` of every field, ascending (read off the packing; the
+    /// mask in place).
+    fields: Vec<(AtomId, u32, u128)>,
     /// The field each bit belongs to.
     field_of_bit: [u8; 128],
 }
@@ -77,7 +78,8 @@ impl Ring {
         for i in 0..fields.len() {
             let end = fields.get(i + 1).map_or(128, |f| f.1);
             let start = fields.get(i)?.1;
-            fields.get_mut(i)?.2 = end.checked_sub(start)?;
+            let width = end.checked_sub(start)?;
+            fields.get_mut(i)?.2 = (u128::MAX >> (128 - width)) << start;
             for slot in field_of_bit.get_mut(start as usize..end as usize)? {
                 *slot = u8::try_from(i).ok()?;
             }
@@ -99,13 +101,12 @@ impl Ring {
         while rest != 0 {
             let bit = rest.trailing_zeros();
             let f = self.field_of_bit.get(bit as usize).copied().unwrap_or(0);
-            let Some(&(a, shift, width)) = self.fields.get(usize::from(f)) else {
+            let Some(&(a, shift, mask)) = self.fields.get(usize::from(f)) else {
                 break;
             };
-            let mask = u128::MAX >> (128 - width);
-            // Every field below bit 32 of its exponent: a degree bound is a u32.
-            pairs.push((a, ((k >> shift) & mask) as u32));
-            rest &= !(mask << shift);
+            // An exponent of a minor is within its atom's degree bound, a u32.
+            pairs.push((a, ((k & mask) >> shift) as u32));
+            rest &= !mask;
         }
         Mono::from_sorted_pairs(pairs)
     }
@@ -124,8 +125,8 @@ impl Ring {
             .iter()
             .filter_map(|t| {
                 let i = self.fields.binary_search_by_key(&t.0, |f| f.0).ok()?;
-                let &(_, shift, width) = self.fields.get(i)?;
-                Some((shift, u128::MAX >> (128 - width)))
+                let &(_, shift, mask) = self.fields.get(i)?;
+                Some((shift, mask))
             })
             .collect();
         for &(k, _) in p {
@@ -133,7 +134,7 @@ impl Ring {
                 break;
             }
             for (slot, &(shift, mask)) in g.iter_mut().zip(&at) {
-                slot.1 = slot.1.min(((k >> shift) & mask) as u32);
+                slot.1 = slot.1.min(((k & mask) >> shift) as u32);
             }
             if g.iter().any(|t| t.1 == 0) {
                 let keep: Vec<bool> = g.iter().map(|t| t.1 > 0).collect();
