@@ -99,7 +99,10 @@ impl Rat {
     /// one determinant, prove coprimality once for all of them (`solve::quotients`).
     /// Debug builds check every condition, the gcd included.
     pub(crate) fn from_coprime(num: Poly, den: Poly) -> Rat {
-        debug_assert!(den.lead().is_some_and(|t| t.1.is_one()), "monic denominator");
+        debug_assert!(
+            den.lead().is_some_and(|t| t.1.is_one()),
+            "monic denominator"
+        );
         debug_assert!(!num.is_zero() || den.is_one(), "zero is 0/1");
         debug_assert!(
             {

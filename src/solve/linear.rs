@@ -127,7 +127,7 @@ pub fn solve(a: &[Vec<Rat>], b: &[Rat]) -> Result<Vec<Rat>, LinearError> {
     // a minor, never a minor times a whole numerator as in back substitution or the
     // upper half of Gauss–Jordan.
     let (det, nums) = match packed_determinants(&m, n) {
-        Some((ring, det, nums)) => (ring.unpack(&det), Numerators::Packed(ring, nums)),
+        Some((ring, det, nums)) => (ring.unpack(&det), Numerators::Packed(Box::new(ring), nums)),
         None => {
             let det = determinant(columns(&m, n, None))?;
             if det.is_zero() {
@@ -151,7 +151,7 @@ pub fn solve(a: &[Vec<Rat>], b: &[Rat]) -> Result<Vec<Rat>, LinearError> {
 
 /// Cramer's numerators, packed (with their ring) or as polynomials.
 enum Numerators {
-    Packed(packed::Ring, Vec<packed::P>),
+    Packed(Box<packed::Ring>, Vec<packed::P>),
     General(Vec<Poly>),
 }
 

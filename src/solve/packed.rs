@@ -238,9 +238,9 @@ impl Ring {
                 }
             }
             _ => {
-                let words = i64::try_from(cb).ok().filter(|_| {
-                    a.iter().all(|t| i64::try_from(t.1).is_ok())
-                });
+                let words = i64::try_from(cb)
+                    .ok()
+                    .filter(|_| a.iter().all(|t| i64::try_from(t.1).is_ok()));
                 for t in &mut a {
                     t.1 = match words {
                         // checked: i64::MIN / −1 overflows.
@@ -410,7 +410,10 @@ struct Accumulator {
 impl Accumulator {
     /// An empty accumulator sized for about `hint` distinct monomials.
     fn new(hint: usize) -> Accumulator {
-        let bits = (hint.max(8) * 2).next_power_of_two().trailing_zeros().min(30);
+        let bits = (hint.max(8) * 2)
+            .next_power_of_two()
+            .trailing_zeros()
+            .min(30);
         Accumulator {
             entries: Vec::with_capacity(hint),
             table: vec![0; 1 << bits],

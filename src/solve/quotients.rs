@@ -12,9 +12,9 @@
 //! decides the rest) and one scaling. Everything here assumes atoms without rewrite
 //! rules, which the caller checks.
 
+use super::packed::{Ring, P};
 use crate::normal::gcd::{div_exact, gcd, LinearFactor};
 use crate::normal::mono::Mono;
-use super::packed::{Ring, P};
 use crate::normal::{AtomId, Limit, Poly, Rat, Q};
 use num_traits::One;
 
@@ -44,7 +44,10 @@ impl Denominator {
         let inv = kappa.recip();
         let mono = det.mono_content();
         // Dividing by a monomial keeps the order: P's leading coefficient is κ's.
-        let p = det.div_mono(&mono).ok_or(Limit::Exponent)?.into_scaled(&inv);
+        let p = det
+            .div_mono(&mono)
+            .ok_or(Limit::Exponent)?
+            .into_scaled(&inv);
         let atoms = p.atoms();
         let degree = degree_in(&p, &atoms);
         let mut out = Denominator {
@@ -122,13 +125,12 @@ impl Denominator {
         let den = match &self.prime {
             None => Poly::term(rest, Q::one()),
             Some(p) => {
-                let quotient = if degree_in(&num, &self.atoms) < self.degree
-                    || p.shown_not_to_divide(&num)
-                {
-                    None
-                } else {
-                    div_exact(&num, p.poly())?
-                };
+                let quotient =
+                    if degree_in(&num, &self.atoms) < self.degree || p.shown_not_to_divide(&num) {
+                        None
+                    } else {
+                        div_exact(&num, p.poly())?
+                    };
                 match quotient {
                     // P divides num (once is all det has).
                     Some(q) => {
@@ -216,8 +218,12 @@ mod tests {
 
     fn any_mono() -> impl Strategy<Value = Mono> {
         proptest::collection::vec((0u32..4, 1u32..3), 0..3).prop_map(|p| {
-            Mono::from_pairs(p.into_iter().map(|(a, e)| (AtomId::from_index(a), e)).collect())
-                .unwrap_or_else(Mono::one)
+            Mono::from_pairs(
+                p.into_iter()
+                    .map(|(a, e)| (AtomId::from_index(a), e))
+                    .collect(),
+            )
+            .unwrap_or_else(Mono::one)
         })
     }
 
@@ -286,7 +292,9 @@ mod tests {
             _ => panic!("the proof about an irreducible determinant"),
         };
         let num = ok(p.mul(&x(1)));
-        let r = d.quotient(num, &Mono::one()).unwrap_or_else(|e| panic!("{e}"));
+        let r = d
+            .quotient(num, &Mono::one())
+            .unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(r, Rat::constant(Q::new(BigInt::from(1), BigInt::from(2))));
         // (x₀ + x₁)²: every atom of degree 2, no proof.
         let sq = ok(x(0).add(&x(1)).mul(&x(0).add(&x(1))));
