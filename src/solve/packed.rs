@@ -369,6 +369,17 @@ fn mul_sub(
     c: &[(u128, i128)],
     d: &[(u128, i128)],
 ) -> Option<P> {
+    // Past this many term products the table (up to one entry each, where little
+    // cancels, as in a generic matrix) leaves the cache, and merging, which streams,
+    // is faster: the dense 7 × 7 system took 1.26 s by the table against 0.77 s.
+    const TABLE_PRODUCTS: usize = 1 << 15;
+    let products = a
+        .len()
+        .saturating_mul(b.len())
+        .saturating_add(c.len().saturating_mul(d.len()));
+    if products > TABLE_PRODUCTS {
+        return mul_sub_merged(a, b, c, d);
+    }
     let mut acc = Accumulator::new(a.len() + b.len() + c.len() + d.len());
     for (x, y, negate) in [(a, b, false), (c, d, true)] {
         if x.is_empty() || y.is_empty() {
@@ -477,6 +488,89 @@ impl Accumulator {
         out.sort_unstable_by_key(|t| t.0);
         out
     }
+}
+
+/// [`mul_sub`] by merges, for products too many for a table to stay in cache.
+///
+/// Each term of a product's shorter factor times the longer one is a sorted list (the
+/// second product's negated); the lists of both products are added pairwise, like the
+/// runs of a bottom-up merge sort (a stack in which two sums of the same number of
+/// lists merge), so the difference comes out sorted with `O(N log k)` comparisons and
+/// no hashing (`N` products, `k` lists), and terms the two products cancel go in the
+/// merges rather than in a subtraction of two stored products.
+fn mul_sub_merged(
+    a: &[(u128, i128)],
+    b: &[(u128, i128)],
+    c: &[(u128, i128)],
+    d: &[(u128, i128)],
+) -> Option<P> {
+    // (number of lists summed, their sum)
+    let mut stack: Vec<(usize, P)> = Vec::new();
+    for (x, y, negate) in [(a, b, false), (c, d, true)] {
+        if x.is_empty() || y.is_empty() {
+            continue;
+        }
+        let (small, big) = if x.len() <= y.len() { (x, y) } else { (y, x) };
+        // One bound for every product: when the largest coefficients' product fits,
+        // none of the term products is checked again.
+        let big_max = big.iter().map(|t| t.1.unsigned_abs()).max()?;
+        let small_max = small.iter().map(|t| t.1.unsigned_abs()).max()?;
+        let fits = big_max
+            .checked_mul(small_max)
+            .is_some_and(|p| p <= i128::MAX as u128);
+        for &(m, k) in small {
+            let k = if negate { k.checked_neg()? } else { k };
+            // The fields hold the sum of two bounded degrees: no carry, order kept.
+            let list: P = if fits {
+                big.iter().map(|&(e, f)| (e + m, f * k)).collect()
+            } else {
+                big.iter()
+                    .map(|&(e, f)| Some((e + m, f.checked_mul(k)?)))
+                    .collect::<Option<P>>()?
+            };
+            let mut run = (1usize, list);
+            while stack.last().is_some_and(|top| top.0 == run.0) {
+                let top = stack.pop()?;
+                run = (top.0 + run.0, add(&top.1, &run.1)?);
+                if run.1.len() > max_terms() || check_deadline().is_err() {
+                    return None;
+                }
+            }
+            stack.push(run);
+        }
+    }
+    let mut out = stack.pop().map(|t| t.1).unwrap_or_default();
+    while let Some(top) = stack.pop() {
+        out = add(&top.1, &out)?;
+        if out.len() > max_terms() {
+            return None;
+        }
+    }
+    Some(out)
+}
+
+/// `a + b`, `None` on overflow.
+fn add(mut a: &[(u128, i128)], mut b: &[(u128, i128)]) -> Option<P> {
+    let mut out = Vec::with_capacity(a.len() + b.len());
+    while let ([x, ra @ ..], [y, rb @ ..]) = (a, b) {
+        if x.0 < y.0 {
+            out.push(*x);
+            a = ra;
+        } else if x.0 > y.0 {
+            out.push(*y);
+            b = rb;
+        } else {
+            let c = x.1.checked_add(y.1)?;
+            if c != 0 {
+                out.push((x.0, c));
+            }
+            a = ra;
+            b = rb;
+        }
+    }
+    out.extend_from_slice(a);
+    out.extend_from_slice(b);
+    Some(out)
 }
 
 #[cfg(test)]
