@@ -634,9 +634,9 @@ mod tests {
             }
         }
 
-        /// The merged product is the product of [`Poly`].
+        /// The product by the table is the product of [`Poly`].
         #[test]
-        fn product_by_merges_is_the_product(
+        fn products_by_table_and_by_merges_are_the_product(
             a in proptest::collection::vec((any_mono(), -50i128..50), 0..12),
             b in proptest::collection::vec((any_mono(), -50i128..50), 0..12),
         ) {
@@ -659,6 +659,11 @@ mod tests {
                 return Err(TestCaseError::fail("small products fit"));
             };
             prop_assert_eq!(Ok(r.unpack(&prod)), pa.mul(&pb));
+            // The merging product (used past 2^15 term products) agrees, and so does
+            // a difference of two products.
+            prop_assert_eq!(mul_sub_merged(&ka, &kb, &[], &[]), Some(prod));
+            prop_assert_eq!(mul_sub_merged(&ka, &kb, &kb, &ka), mul_sub(&ka, &kb, &kb, &ka));
+            prop_assert_eq!(mul_sub_merged(&ka, &kb, &ka, &ka), mul_sub(&ka, &kb, &ka, &ka));
         }
     }
 }
