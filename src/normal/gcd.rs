@@ -483,6 +483,137 @@ fn gcd_degree_mod_p(mut a: Vec<u64>, mut b: Vec<u64>) -> usize {
     a.len().saturating_sub(1)
 }
 
+/// A polynomial `d` of degree 1 in an atom `v`, with a point modulo the prime 2⁶¹ − 1
+/// at which it vanishes: the other atoms at hashed values where the coefficient of `v`
+/// does not vanish, `v` at the root of the image. A polynomial `n` whose image there is
+/// not 0 is not divisible by `d`. (If `d | n`, write `d = c·d₀` with `d₀` primitive over
+/// ℤ and `n = n₀/L` with `n₀` over ℤ: by Gauss's lemma `n₀ = d₀·q` with `q` over ℤ, so
+/// `n₀` vanishes modulo the prime wherever `d₀` does, and so does `n` when every
+/// denominator of `n` has an image, which [`q_mod_p`] requires.)
+pub struct LinearFactor {
+    d: Poly,
+    v: AtomId,
+    attempt: u64,
+    root: u64,
+}
+
+impl LinearFactor {
+    /// `d` with its point; `None` when `d` is not of degree 1 in `v` or no point was
+    /// found (three tries).
+    pub fn new(d: Poly, v: AtomId) -> Option<LinearFactor> {
+        let mut inverses = Vec::new();
+        for attempt in 0..3u64 {
+            // d's image: alpha·v + beta.
+            let (mut alpha, mut beta) = (0u64, 0u64);
+            for (m, q) in d.terms() {
+                let mut w = q_mod_p(q, &mut inverses)?;
+                let mut in_v = 0;
+                for &(x, k) in m.pairs() {
+                    if x == v {
+                        in_v = k;
+                    } else {
+                        w = mulmod(w, powmod(hashed(x, attempt), u64::from(k)));
+                    }
+                }
+                match in_v {
+                    0 => beta = (beta + w) % P,
+                    1 => alpha = (alpha + w) % P,
+                    _ => return None,
+                }
+            }
+            // The coefficient of v vanished at this point: try another.
+            let Some(inv) = invmod(alpha) else {
+                continue;
+            };
+            let root = mulmod((P - beta) % P, inv);
+            return Some(LinearFactor {
+                d,
+                v,
+                attempt,
+                root,
+            });
+        }
+        None
+    }
+
+    /// The polynomial `d`.
+    pub fn poly(&self) -> &Poly {
+        &self.d
+    }
+
+    /// Whether evaluation proves that `d` does not divide `n`. This only ever proves;
+    /// `false` means "not shown", and an exact division must decide.
+    pub fn shown_not_to_divide(&self, n: &Poly) -> bool {
+        let at = |x: AtomId| {
+            if x == self.v {
+                self.root
+            } else {
+                hashed(x, self.attempt)
+            }
+        };
+        evaluate(n, &at).is_some_and(|y| y != 0)
+    }
+}
+
+/// The value modulo [`P`] that evaluation gives atom `x` in its `attempt`-th try: in
+/// 2..P, from a multiplicative hash of the id.
+fn hashed(x: AtomId, attempt: u64) -> u64 {
+    let h = (u64::from(x.index()) + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        ^ attempt.wrapping_mul(0xD6E8_FEB8_6659_FD93);
+    h % (P - 2) + 2
+}
+
+/// `p` at the point `at` modulo [`P`]; `None` when a coefficient has no image. Each
+/// atom's value and its powers (to its degree, at most 64; beyond, by squaring) are
+/// found once.
+fn evaluate(p: &Poly, at: &dyn Fn(AtomId) -> u64) -> Option<u64> {
+    const DIRECT: u64 = 64;
+    let degs = super::pack::degrees(p);
+    let lo = degs.first().map_or(0, |t| t.0.index());
+    let span = degs.last().map_or(0, |t| t.0.index() - lo) as usize;
+    // (value, start of its powers, how many), by position in `degs`.
+    let mut atoms = Vec::with_capacity(degs.len());
+    let mut pows = Vec::new();
+    for &(x, d) in &degs {
+        let val = at(x);
+        let start = pows.len();
+        let mut y = 1u64;
+        for _ in 0..=d.min(DIRECT) {
+            pows.push(y);
+            y = mulmod(y, val);
+        }
+        atoms.push((val, start, pows.len() - start));
+    }
+    let mut table = Vec::new();
+    if span < 4096 {
+        table = vec![usize::MAX; span + 1];
+        for (i, (x, _)) in degs.iter().enumerate() {
+            *table.get_mut((x.index() - lo) as usize)? = i;
+        }
+    }
+    let locate = |x: AtomId| -> Option<usize> {
+        match table.get(x.index().checked_sub(lo)? as usize) {
+            Some(&i) => (i != usize::MAX).then_some(i),
+            None => degs.binary_search_by_key(&x, |t| t.0).ok(),
+        }
+    };
+    let mut inverses = Vec::new();
+    let mut total = 0u64;
+    for (m, q) in p.terms() {
+        let mut w = q_mod_p(q, &mut inverses)?;
+        for &(x, k) in m.pairs() {
+            let &(val, start, len) = atoms.get(locate(x)?)?;
+            let xk = match (k as usize) < len {
+                true => *pows.get(start + k as usize)?,
+                false => powmod(val, u64::from(k)),
+            };
+            w = mulmod(w, xk);
+        }
+        total = (total + w) % P;
+    }
+    Some(total)
+}
+
 /// The monic greatest common divisor (`gcd(0, 0) = 0`).
 pub fn gcd(a: &Poly, b: &Poly) -> Result<Poly, Limit> {
     if a.is_zero() {
@@ -718,6 +849,24 @@ mod tests {
             // A common factor that is not a monomial is never proved away.
             if c.len() > 1 && ac.len() > 1 && bc.len() > 1 {
                 prop_assert!(monomial_gcd_by_evaluation(&ac, &bc).is_none());
+            }
+        }
+    }
+
+    proptest! {
+        /// A multiple of a polynomial linear in an atom is never shown not to be one,
+        /// and whatever is shown not to be a multiple is not.
+        #[test]
+        fn non_divisibility_is_never_claimed_wrongly(a in poly(), b in poly(), q in poly(), r in poly()) {
+            let x = Poly::atom(crate::normal::AtomId::from_index(7));
+            let d = a.mul(&x).unwrap_or_else(|_| Poly::zero()).add(&b);
+            let Some(f) = super::LinearFactor::new(d.clone(), crate::normal::AtomId::from_index(7)) else {
+                return Ok(());
+            };
+            let n = d.mul(&q).unwrap_or_else(|_| Poly::zero());
+            prop_assert!(!f.shown_not_to_divide(&n));
+            if f.shown_not_to_divide(&r) {
+                prop_assert_eq!(div_exact(&r, &d), Ok(None));
             }
         }
     }

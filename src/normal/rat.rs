@@ -92,6 +92,36 @@ impl Rat {
         })
     }
 
+    /// `num / den` as given, for a caller that has established what [`Rat::new`] would
+    /// otherwise establish: no atom of either carries a rewrite rule (so neither needs
+    /// reducing and nothing is rationalised), `num` and `den` are coprime, `den` is
+    /// monic, and `den` is `1` when `num` is zero. The solver's quotients, which share
+    /// one determinant, prove coprimality once for all of them (`solve::quotients`).
+    /// Debug builds check every condition, the gcd included.
+    pub(crate) fn from_coprime(num: Poly, den: Poly) -> Rat {
+        debug_assert!(
+            den.lead().is_some_and(|t| t.1.is_one()),
+            "monic denominator"
+        );
+        debug_assert!(!num.is_zero() || den.is_one(), "zero is 0/1");
+        debug_assert!(
+            {
+                let mut ids = num.atoms();
+                ids.extend(den.atoms());
+                super::atom::rules(&ids)
+                    .iter()
+                    .all(|r| *r == super::atom::Rule::Free)
+            },
+            "atoms without rules"
+        );
+        debug_assert!(
+            // (A gcd refused by a limit shows nothing either way.)
+            num.is_zero() || !matches!(gcd(&num, &den), Ok(g) if !g.is_one()),
+            "coprime"
+        );
+        Rat { num, den }
+    }
+
     /// A polynomial as a rational function (reduced).
     pub fn poly(p: Poly) -> Result<Rat, NormError> {
         Ok(Rat {

@@ -6,10 +6,10 @@
 //! The checker does not use this solver (it eliminates fact by fact, `check/elimination.rs`);
 //! it is the library's solver and the one the benchmarks time.
 
-use super::packed;
+use super::{packed, quotients};
 use crate::normal::gcd::{div_exact, gcd};
 use crate::normal::mono::Mono;
-use crate::normal::{Limit, NormError, Poly, Rat, Q};
+use crate::normal::{atom, AtomId, Limit, NormError, Poly, Rat, Q};
 use num_traits::One;
 use std::fmt;
 
@@ -127,7 +127,7 @@ pub fn solve(a: &[Vec<Rat>], b: &[Rat]) -> Result<Vec<Rat>, LinearError> {
     // a minor, never a minor times a whole numerator as in back substitution or the
     // upper half of Gauss–Jordan.
     let (det, nums) = match packed_determinants(&m, n) {
-        Some(r) => r,
+        Some((ring, det, nums)) => (ring.unpack(&det), Numerators::Packed(Box::new(ring), nums)),
         None => {
             let det = determinant(columns(&m, n, None))?;
             if det.is_zero() {
@@ -136,24 +136,61 @@ pub fn solve(a: &[Vec<Rat>], b: &[Rat]) -> Result<Vec<Rat>, LinearError> {
             let nums = (0..n)
                 .map(|i| determinant(columns(&m, n, Some(i))))
                 .collect::<Result<Vec<Poly>, LinearError>>()?;
-            (det, nums)
+            (det, Numerators::General(nums))
         }
     };
     if det.is_zero() {
         return Err(LinearError::Singular);
     }
-    // x_i = y_i / c_i = num_i / (det · c_i): one canonical form, one gcd.
-    let mut out = Vec::with_capacity(n);
-    for (num, c) in nums.into_iter().zip(col_factor) {
+    let mut out = quotients_of(&det, &nums, &col_factor, rule_free(&m))?;
+    if reverse {
+        out.reverse();
+    }
+    Ok(out)
+}
+
+/// Cramer's numerators, packed (with their ring) or as polynomials.
+enum Numerators {
+    Packed(Box<packed::Ring>, Vec<packed::P>),
+    General(Vec<Poly>),
+}
+
+/// `x_i = y_i / c_i = num_i / (det · c_i)`, one canonical form each: from one proof
+/// about `det` when the atoms have no rules (`free`) and it is shown
+/// ([`quotients::Denominator`]), else one `Rat::new` (one gcd) each.
+fn quotients_of(
+    det: &Poly,
+    nums: &Numerators,
+    col_factor: &[Mono],
+    free: bool,
+) -> Result<Vec<Rat>, LinearError> {
+    let shared = if free {
+        quotients::Denominator::new(det)?
+    } else {
+        None
+    };
+    let mut out = Vec::with_capacity(col_factor.len());
+    for (k, c) in col_factor.iter().enumerate() {
+        if let (Some(d), Numerators::Packed(ring, ps)) = (&shared, nums) {
+            if let Some(x) = d.quotient_packed(ring, ps.get(k).ok_or(LinearError::Shape)?, c)? {
+                out.push(x);
+                continue;
+            }
+        }
+        let num = match nums {
+            Numerators::Packed(ring, ps) => ring.unpack(ps.get(k).ok_or(LinearError::Shape)?),
+            Numerators::General(ps) => ps.get(k).ok_or(LinearError::Shape)?.clone(),
+        };
+        if let Some(d) = &shared {
+            out.push(d.quotient(num, c)?);
+            continue;
+        }
         let den = if c.is_one() {
             det.clone()
         } else {
-            det.mul_term(&c, &Q::one())?
+            det.mul_term(c, &Q::one())?
         };
         out.push(Rat::new(num, den)?);
-    }
-    if reverse {
-        out.reverse();
     }
     Ok(out)
 }
@@ -206,7 +243,10 @@ fn columns<T: Clone>(m: &[Vec<T>], n: usize, i: Option<usize>) -> (Vec<Vec<T>>, 
 /// rows from `k` on, without column `k`, is the state the elimination for the numerator
 /// of `x_k` (columns `0..k`, then those after `k`, then `b`) reaches after its own `k`
 /// steps. That numerator takes it from there; only its last `n − k` steps are its own.
-fn packed_determinants(m: &[Vec<Poly>], n: usize) -> Option<(Poly, Vec<Poly>)> {
+fn packed_determinants(
+    m: &[Vec<Poly>],
+    n: usize,
+) -> Option<(packed::Ring, packed::P, Vec<packed::P>)> {
     let ring = packed::Ring::new(m)?;
     let mut m = m
         .iter()
@@ -218,9 +258,9 @@ fn packed_determinants(m: &[Vec<Poly>], n: usize) -> Option<(Poly, Vec<Poly>)> {
     for k in 0..n {
         // The numerator of x_k: moving column k past the n − 1 − k after it.
         let sign = negate != ((n - 1 - k) % 2 == 1);
-        nums.push(ring.unpack(&numerator_packed(&ring, m.get(k..)?, k + 1, sign, &prev)?));
+        nums.push(numerator_packed(&ring, m.get(k..)?, k + 1, sign, &prev)?);
         let Some(p) = pivot_row(&m, k, |e: &packed::P| e.len()) else {
-            return Some((Poly::zero(), Vec::new()));
+            return Some((ring, Vec::new(), Vec::new()));
         };
         if p != k {
             m.swap(k, p);
@@ -234,7 +274,7 @@ fn packed_determinants(m: &[Vec<Poly>], n: usize) -> Option<(Poly, Vec<Poly>)> {
             t.1 = t.1.checked_neg()?;
         }
     }
-    Some((ring.unpack(&prev), nums))
+    Some((ring, prev, nums))
 }
 
 /// Step `k` of Bareiss elimination on packed polynomials: every entry right of and
@@ -363,6 +403,15 @@ fn determinant((mut m, negate): (Vec<Vec<Poly>>, bool)) -> Result<Poly, LinearEr
     Ok(if negate { prev.neg() } else { prev })
 }
 
+/// Whether no atom of the matrix carries a rewrite rule (its products need no
+/// reduction, and [`quotients`] applies).
+fn rule_free(m: &[Vec<Poly>]) -> bool {
+    let mut ids: Vec<AtomId> = m.iter().flatten().flat_map(Poly::atoms).collect();
+    ids.sort_unstable();
+    ids.dedup();
+    atom::rules(&ids).iter().all(|r| *r == atom::Rule::Free)
+}
+
 /// The greatest monomial dividing every nonzero polynomial of `entries`.
 fn row_content<'a>(entries: impl Iterator<Item = &'a Poly>) -> Mono {
     let mut g: Option<Mono> = None;
@@ -439,7 +488,8 @@ mod tests {
             };
             let packed = packed_determinants(&m, n);
             prop_assert!(packed.is_some(), "small integer matrices pack");
-            let Some((pdet, pnums)) = packed else { unreachable!() };
+            let Some((ring, pdet, pnums)) = packed else { unreachable!() };
+            let (pdet, pnums) = (ring.unpack(&pdet), pnums.iter().map(|p| ring.unpack(p)).collect::<Vec<_>>());
             prop_assert_eq!(&pdet, &det);
             if !det.is_zero() {
                 prop_assert_eq!(pnums, nums);

@@ -2,5 +2,6 @@
 
 pub mod linear;
 mod packed;
+mod quotients;
 
 pub use linear::{solve, LinearError};
