@@ -575,19 +575,14 @@ fn place(chain: &Chain, doc: &str, b: &mut Build<'_>) {
             // Checked as a claim; then, holding or not, taken as what the notes state —
             // unless every symbol is one the document declared: then it is a step, a
             // fact once verified, and a mistake (never a fact) if not.
+            let start = chain.first.span.start;
+            let restated = (!firm || constraint) && !skip.contains(&start);
+            let wanted = keep.is_none_or(|k| k.contains(&start));
+            let claim = (!restated || constraint || wanted)
+                .then(|| write("claim", &first_link, deriv))
+                .flatten();
             let kw = if constraint { "constraint" } else { "given" };
-            let restated = (!firm || constraint) && !skip.contains(&chain.first.span.start);
-            let wanted = keep.is_none_or(|k| k.contains(&chain.first.span.start));
-            let claim = if restated && !constraint && !wanted {
-                None
-            } else {
-                write("claim", &first_link, deriv)
-            };
-            stated = if restated {
-                write(kw, &first_link, deriv)
-            } else {
-                None
-            };
+            stated = restated.then(|| write(kw, &first_link, deriv)).flatten();
             (claim, lone(&chain.first))
         }
     };
