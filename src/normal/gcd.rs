@@ -489,7 +489,7 @@ fn gcd_degree_mod_p(mut a: Vec<u64>, mut b: Vec<u64>) -> usize {
 /// not 0 is not divisible by `d`. (If `d | n`, write `d = c·d₀` with `d₀` primitive over
 /// ℤ and `n = n₀/L` with `n₀` over ℤ: by Gauss's lemma `n₀ = d₀·q` with `q` over ℤ, so
 /// `n₀` vanishes modulo the prime wherever `d₀` does, and so does `n` when every
-/// denominator of `n` has an image, which [`q_mod_p`] requires.)
+/// denominator of `n` has an image, which `q_mod_p` requires.)
 pub struct LinearFactor {
     d: Poly,
     v: AtomId,
