@@ -385,14 +385,7 @@ fn mul_sub(
         if x.is_empty() || y.is_empty() {
             continue;
         }
-        let (small, big) = if x.len() <= y.len() { (x, y) } else { (y, x) };
-        // One bound for every product: when the largest coefficients' product fits,
-        // none of the term products is checked again.
-        let big_max = big.iter().map(|t| t.1.unsigned_abs()).max()?;
-        let small_max = small.iter().map(|t| t.1.unsigned_abs()).max()?;
-        let fits = big_max
-            .checked_mul(small_max)
-            .is_some_and(|p| p <= i128::MAX as u128);
+        let (small, big, fits) = ordered(x, y)?;
         for &(m, k) in small {
             let k = if negate { k.checked_neg()? } else { k };
             // The fields hold the sum of two bounded degrees: no carry, order kept.
@@ -490,6 +483,22 @@ impl Accumulator {
     }
 }
 
+/// A list of packed terms (monomial, coefficient).
+type Terms<'t> = &'t [(u128, i128)];
+
+/// `x` and `y`, the shorter first, and whether every product of their coefficients
+/// fits in an `i128`: one bound for every product (the largest coefficients'), so that
+/// none of the term products is checked again. `None` for an empty list.
+fn ordered<'t>(x: Terms<'t>, y: Terms<'t>) -> Option<(Terms<'t>, Terms<'t>, bool)> {
+    let (small, big) = if x.len() <= y.len() { (x, y) } else { (y, x) };
+    let big_max = big.iter().map(|t| t.1.unsigned_abs()).max()?;
+    let small_max = small.iter().map(|t| t.1.unsigned_abs()).max()?;
+    let fits = big_max
+        .checked_mul(small_max)
+        .is_some_and(|p| p <= i128::MAX as u128);
+    Some((small, big, fits))
+}
+
 /// [`mul_sub`] by merges, for products too many for a table to stay in cache.
 ///
 /// Each term of a product's shorter factor times the longer one is a sorted list (the
@@ -510,14 +519,7 @@ fn mul_sub_merged(
         if x.is_empty() || y.is_empty() {
             continue;
         }
-        let (small, big) = if x.len() <= y.len() { (x, y) } else { (y, x) };
-        // One bound for every product: when the largest coefficients' product fits,
-        // none of the term products is checked again.
-        let big_max = big.iter().map(|t| t.1.unsigned_abs()).max()?;
-        let small_max = small.iter().map(|t| t.1.unsigned_abs()).max()?;
-        let fits = big_max
-            .checked_mul(small_max)
-            .is_some_and(|p| p <= i128::MAX as u128);
+        let (small, big, fits) = ordered(x, y)?;
         for &(m, k) in small {
             let k = if negate { k.checked_neg()? } else { k };
             // The fields hold the sum of two bounded degrees: no carry, order kept.
