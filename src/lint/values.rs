@@ -70,30 +70,25 @@ pub(super) fn suggest(
     if scope.values.is_empty() {
         return;
     }
-    // The chains whose verdict may change: only their claims are checked again.
+    // A chain's report, when a value may settle it.
+    let unsettled = |r: &ChainReport, p: &super::Placed| {
+        r.span.end == p.span.end
+            && r.verdict == Verdict::NeedsContext
+            && r.comment.is_none()
+            && settles(r.reason)
+    };
+    // The chains a value may settle: only their claims are checked again.
     let open: HashSet<usize> = b
         .placed
         .iter()
-        .filter(|p| {
-            out.iter().any(|r| {
-                r.span.end == p.span.end
-                    && r.verdict == Verdict::NeedsContext
-                    && r.comment.is_none()
-                    && settles(r.reason)
-            })
-        })
+        .filter(|p| out.iter().any(|r| unsettled(r, p)))
         .map(|p| p.span.start)
         .collect();
     if open.is_empty() {
         return;
     }
     for (i, p) in b.placed.iter().enumerate() {
-        let Some(r) = out.iter_mut().find(|r| {
-            r.span.end == p.span.end
-                && r.verdict == Verdict::NeedsContext
-                && r.comment.is_none()
-                && settles(r.reason)
-        }) else {
+        let Some(r) = out.iter_mut().find(|r| unsettled(r, p)) else {
             continue;
         };
         // Its own symbols, or those of the chains before it (`h` in `v = \sqrt{2 g h}`,
