@@ -294,21 +294,13 @@ fn images(
     vars: &[AtomId],
     value: &dyn Fn(AtomId) -> u64,
 ) -> Option<Images> {
-    const DIRECT: u64 = 64;
-    // Each atom of p: its value, where its powers start in `pows` (to degree DIRECT;
-    // beyond, by squaring) and how many, and its slot when it is one of `vars`.
-    let mut atoms: Vec<(u64, usize, usize, Option<usize>)> = Vec::with_capacity(degs.len());
-    let mut pows: Vec<u64> = Vec::new();
-    for &(x, d) in degs {
-        let val = value(x);
-        let at = pows.len();
-        let mut y = 1u64;
-        for _ in 0..=d.min(DIRECT) {
-            pows.push(y);
-            y = mulmod(y, val);
-        }
-        atoms.push((val, at, pows.len() - at, None));
-    }
+    // Each atom of p: its value, where its powers start in `pows` and how many, and its
+    // slot when it is one of `vars`.
+    let (powers, pows) = powers(degs, value);
+    let mut atoms: Vec<(u64, usize, usize, Option<usize>)> = powers
+        .into_iter()
+        .map(|(v, at, len)| (v, at, len, None))
+        .collect();
     let mut slots = Vec::with_capacity(vars.len());
     let mut buf: Vec<u64> = Vec::new();
     for (j, &v) in vars.iter().enumerate() {
@@ -329,24 +321,8 @@ fn images(
         });
         buf.resize(buf.len() + len, 0);
     }
-    // Where an atom of p is in `atoms`: a direct table over the ids in use when narrow.
-    let lo = degs.first().map_or(0, |t| t.0.index());
-    let span = degs.last().map_or(0, |t| t.0.index() - lo) as usize;
-    let table: Vec<usize> = if span < 4096 {
-        let mut t = vec![usize::MAX; span + 1];
-        for (i, (x, _)) in degs.iter().enumerate() {
-            *t.get_mut((x.index() - lo) as usize)? = i;
-        }
-        t
-    } else {
-        Vec::new()
-    };
-    let locate = |x: AtomId| -> Option<usize> {
-        match table.get(x.index().checked_sub(lo)? as usize) {
-            Some(&i) => (i != usize::MAX).then_some(i),
-            None => degs.binary_search_by_key(&x, |t| t.0).ok(),
-        }
-    };
+    let place = Places::of(degs)?;
+    let locate = |x: AtomId| place.of_atom(x);
     let mut inverses = Vec::new();
     let mut total = 0u64;
     for (m, q) in p.terms() {
@@ -563,19 +539,15 @@ fn hashed(x: AtomId, attempt: u64) -> u64 {
     h % (P - 2) + 2
 }
 
-/// `p` at the point `at` modulo [`P`]; `None` when a coefficient has no image. Each
-/// atom's value and its powers (to its degree, at most 64; beyond, by squaring) are
-/// found once.
-fn evaluate(p: &Poly, at: &dyn Fn(AtomId) -> u64) -> Option<u64> {
+/// Each atom's value and its powers modulo [`P`], up to its degree (at most 64; a higher
+/// power is found by squaring): (value, where its powers start in the second list, how
+/// many), in the order of `degs`.
+fn powers(degs: &[(AtomId, u64)], value: &dyn Fn(AtomId) -> u64) -> PowerTable {
     const DIRECT: u64 = 64;
-    let degs = super::pack::degrees(p);
-    let lo = degs.first().map_or(0, |t| t.0.index());
-    let span = degs.last().map_or(0, |t| t.0.index() - lo) as usize;
-    // (value, start of its powers, how many), by position in `degs`.
     let mut atoms = Vec::with_capacity(degs.len());
     let mut pows = Vec::new();
-    for &(x, d) in &degs {
-        let val = at(x);
+    for &(x, d) in degs {
+        let val = value(x);
         let start = pows.len();
         let mut y = 1u64;
         for _ in 0..=d.min(DIRECT) {
@@ -584,19 +556,50 @@ fn evaluate(p: &Poly, at: &dyn Fn(AtomId) -> u64) -> Option<u64> {
         }
         atoms.push((val, start, pows.len() - start));
     }
-    let mut table = Vec::new();
-    if span < 4096 {
-        table = vec![usize::MAX; span + 1];
-        for (i, (x, _)) in degs.iter().enumerate() {
-            *table.get_mut((x.index() - lo) as usize)? = i;
+    (atoms, pows)
+}
+
+/// Atoms' values with where their powers are, and the powers.
+type PowerTable = (Vec<(u64, usize, usize)>, Vec<u64>);
+
+/// Where an atom is in `degs` (sorted by atom): a direct table over the ids in use when
+/// they are narrow, else a binary search.
+struct Places<'d> {
+    degs: &'d [(AtomId, u64)],
+    lo: u32,
+    table: Vec<usize>,
+}
+
+impl<'d> Places<'d> {
+    fn of(degs: &'d [(AtomId, u64)]) -> Option<Places<'d>> {
+        let lo = degs.first().map_or(0, |t| t.0.index());
+        let span = degs.last().map_or(0, |t| t.0.index() - lo) as usize;
+        let mut table = Vec::new();
+        if span < 4096 {
+            table = vec![usize::MAX; span + 1];
+            for (i, (x, _)) in degs.iter().enumerate() {
+                *table.get_mut((x.index() - lo) as usize)? = i;
+            }
+        }
+        Some(Places { degs, lo, table })
+    }
+
+    fn of_atom(&self, x: AtomId) -> Option<usize> {
+        match self.table.get(x.index().checked_sub(self.lo)? as usize) {
+            Some(&i) => (i != usize::MAX).then_some(i),
+            None => self.degs.binary_search_by_key(&x, |t| t.0).ok(),
         }
     }
-    let locate = |x: AtomId| -> Option<usize> {
-        match table.get(x.index().checked_sub(lo)? as usize) {
-            Some(&i) => (i != usize::MAX).then_some(i),
-            None => degs.binary_search_by_key(&x, |t| t.0).ok(),
-        }
-    };
+}
+
+/// `p` at the point `at` modulo [`P`]; `None` when a coefficient has no image. Each
+/// atom's value and its powers (to its degree, at most 64; beyond, by squaring) are
+/// found once.
+fn evaluate(p: &Poly, at: &dyn Fn(AtomId) -> u64) -> Option<u64> {
+    let degs = super::pack::degrees(p);
+    let (atoms, pows) = powers(&degs, at);
+    let place = Places::of(&degs)?;
+    let locate = |x: AtomId| place.of_atom(x);
     let mut inverses = Vec::new();
     let mut total = 0u64;
     for (m, q) in p.terms() {

@@ -429,7 +429,7 @@ fn row_content<'a>(entries: impl Iterator<Item = &'a Poly>) -> Mono {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::normal::AtomId;
     use num_bigint::BigInt;
@@ -437,7 +437,7 @@ mod tests {
 
     /// A small polynomial from `(atom, exponent)` lists and integer coefficients
     /// (atoms 0–3, so products of entries share atoms and cancel).
-    fn poly(terms: &[(Vec<(u32, u32)>, i64)]) -> Poly {
+    pub(in crate::solve) fn poly(terms: &[(Vec<(u32, u32)>, i64)]) -> Poly {
         Poly::from_terms(
             terms
                 .iter()

@@ -187,25 +187,10 @@ fn common_content(p: &Poly, full: &Mono) -> Option<Mono> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::linear::tests::poly;
     use super::*;
     use num_bigint::BigInt;
     use proptest::prelude::*;
-
-    /// A polynomial from `(atom, exponent)` lists and integer coefficients.
-    fn poly(terms: &[(Vec<(u32, u32)>, i64)]) -> Poly {
-        Poly::from_terms(
-            terms
-                .iter()
-                .filter_map(|(m, c)| {
-                    let m = m.iter().map(|&(a, e)| (AtomId::from_index(a), e));
-                    Some((
-                        Mono::from_pairs(m.collect())?,
-                        Q::from_integer(BigInt::from(*c)),
-                    ))
-                })
-                .collect(),
-        )
-    }
 
     /// A polynomial in atoms `from..4`.
     fn any_poly(from: u32) -> impl Strategy<Value = Poly> {
