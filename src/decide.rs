@@ -7,9 +7,10 @@ use crate::lower::Need;
 use crate::normal::atom::{self, Atom, AtomId};
 use crate::normal::print::plain;
 use crate::normal::{Assumptions, Poly, Rat, Sign, Q};
+use foldhash::{HashMap, HashMapExt};
 use num_bigint::BigInt;
 use num_traits::{One, ToPrimitive, Zero};
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 
 /// Values of the symbols at which two sides differ, and the sides' values there.
 #[derive(Clone, Debug, PartialEq)]
@@ -762,6 +763,43 @@ pub fn find_counterexample_where(
     first
 }
 
+/// `p` at `point` (every atom of `p` a symbol with a value there) as one fraction
+/// `(numerator, denominator > 0)`, unreduced: the terms are summed without a gcd, the
+/// caller reduces once. The guard's points are mostly dyadic (denominators powers of
+/// two), whose sums stay aligned by shifts.
+fn exact_sum(p: &Poly, point: &HashMap<AtomId, Q>) -> (BigInt, BigInt) {
+    let mut num = BigInt::zero();
+    let mut den = BigInt::one();
+    for (m, q) in p.terms() {
+        let (mut tn, mut td) = (q.numer().clone(), q.denom().clone());
+        for &(a, e) in m.pairs() {
+            if let Some(v) = point.get(&a) {
+                tn *= v.numer().pow(e);
+                td *= v.denom().pow(e);
+            }
+        }
+        (num, den) = frac_add((num, den), (tn, td));
+    }
+    (num, den)
+}
+
+/// `a + b` for fractions with positive denominators, unreduced; a common denominator
+/// by shifting when both are powers of two.
+fn frac_add(a: (BigInt, BigInt), b: (BigInt, BigInt)) -> (BigInt, BigInt) {
+    let two_power = |d: &BigInt| {
+        let z = d.trailing_zeros()?;
+        (d.bits() == z + 1).then_some(z as usize)
+    };
+    if a.1 == b.1 {
+        return (a.0 + b.0, a.1);
+    }
+    match (two_power(&a.1), two_power(&b.1)) {
+        (Some(x), Some(y)) if x >= y => (a.0 + (b.0 << (x - y)), a.1),
+        (Some(x), Some(y)) => ((a.0 << (y - x)) + b.0, b.1),
+        _ => (a.0 * &b.1 + b.0 * &a.1, a.1 * b.1),
+    }
+}
+
 /// Rigorous evaluation of normal forms at a rational point.
 pub struct Evaluator<'a> {
     /// Values of the symbols.
@@ -831,24 +869,12 @@ impl<'a> Evaluator<'a> {
         if huge(r.num()) || huge(r.den()) {
             return None;
         }
-        let eval = |p: &Poly| -> Q {
-            let mut total = Q::zero();
-            for (m, q) in p.terms() {
-                let mut t = q.clone();
-                for &(a, e) in m.pairs() {
-                    if let Some(v) = self.point.get(&a) {
-                        t *= crate::normal::poly::pow_q(v, e);
-                    }
-                }
-                total += t;
-            }
-            total
-        };
-        let den = eval(r.den());
-        if den.is_zero() {
+        let (nn, nd) = exact_sum(r.num(), self.point);
+        let (dn, dd) = exact_sum(r.den(), self.point);
+        if dn.is_zero() {
             return Some(None);
         }
-        Some(Some(eval(r.num()) / den))
+        Some(Some(Q::new(nn * dd, nd * dn)))
     }
 
     fn poly(&mut self, p: &Poly) -> Option<Interval> {

@@ -10,12 +10,12 @@
 //! interval containing zero) or cannot be bounded within the size limits.
 //! No floating point is used anywhere.
 
+use foldhash::{HashMap, HashMapExt};
 use num_bigint::{BigInt, BigUint};
 use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 use std::cmp::Ordering;
-use std::collections::HashMap;
 use std::sync::Mutex;
 
 /// Largest binary exponent (in absolute value) an endpoint may have;
@@ -103,13 +103,41 @@ fn round_frac(n: &BigInt, d: &BigInt, bits: u32, up: bool) -> Option<BigRational
         return None;
     }
     let s = bits as i64 + 1 - e;
+    // A power-of-two denominator (dyadic endpoints, and their products and sums): the
+    // rounding is a shift.
+    if let Some(k) = d
+        .trailing_zeros()
+        .filter(|&k| d.is_positive() && d.bits() == k + 1)
+    {
+        return Some(dyadic(shift_round(n, s - k as i64, up), -s));
+    }
+    Some(dyadic(scaled_round(n, d, s, up), -s))
+}
+
+/// `n * 2^s / d` rounded to an integer, down or up, by a division; `d > 0`.
+fn scaled_round(n: &BigInt, d: &BigInt, s: i64, up: bool) -> BigInt {
     let (n, d) = scaled(n, d, s);
-    let m = if up {
+    if up {
         -((-n).div_floor(&d))
     } else {
         n.div_floor(&d)
-    };
-    Some(dyadic(m, -s))
+    }
+}
+
+/// `n * 2^s` rounded to an integer, down (toward minus infinity) or up.
+fn shift_round(n: &BigInt, s: i64, up: bool) -> BigInt {
+    if s >= 0 {
+        return n << (s as usize);
+    }
+    let r = s.unsigned_abs();
+    let floor = n >> (r as usize);
+    // `>>` rounds toward minus infinity; it is exact when no bit below 2^r is set.
+    let exact = n.trailing_zeros().is_none_or(|z| z >= r);
+    if up && !exact {
+        floor + 1
+    } else {
+        floor
+    }
 }
 
 /// The fraction `(n * 2^s) / d`, unreduced.
@@ -372,7 +400,7 @@ impl Interval {
         }
     }
 
-    fn hull_of(v: [Frac; 4], p: Prec) -> Option<Interval> {
+    fn hull_of<const N: usize>(v: [Frac; N], p: Prec) -> Option<Interval> {
         let lo = v.iter().min_by(|a, b| fcmp(a, b))?.clone();
         let hi = v.iter().max_by(|a, b| fcmp(a, b))?.clone();
         Interval::mk_frac(lo, hi, p)
@@ -382,7 +410,19 @@ impl Interval {
     pub fn mul(&self, other: &Interval, p: Prec) -> Option<Interval> {
         let (a, b, c, d) = (&self.lo, &self.hi, &other.lo, &other.hi);
         let m = |x: &BigRational, y: &BigRational| fr(x.numer() * y.numer(), x.denom() * y.denom());
-        Interval::hull_of([m(a, c), m(a, d), m(b, c), m(b, d)], p)
+        // Structural equality: `Ratio`'s own comparison divides.
+        let same =
+            |x: &BigRational, y: &BigRational| x.numer() == y.numer() && x.denom() == y.denom();
+        match (same(a, b), same(c, d)) {
+            // Points (the guard's values, a term's coefficient): fewer products.
+            (true, true) => {
+                let x = m(a, c);
+                Interval::mk_frac(x.clone(), x, p)
+            }
+            (true, false) => Interval::hull_of([m(a, c), m(a, d)], p),
+            (false, true) => Interval::hull_of([m(a, c), m(b, c)], p),
+            (false, false) => Interval::hull_of([m(a, c), m(a, d), m(b, c), m(b, d)], p),
+        }
     }
 
     /// Enclosure of `1 / x`; `None` if `x` contains zero.
@@ -414,6 +454,9 @@ impl Interval {
         }
         if n == 0 {
             return Some(Interval::int(1));
+        }
+        if n == 1 {
+            return Some(self.clone());
         }
         let big = self.mag_bound();
         if !big.is_zero() && mag(&big).saturating_mul(n).unsigned_abs() > (MAX_EXP + 64) as u64 {
@@ -1014,6 +1057,28 @@ mod tests {
             let w = Interval::new(std::cmp::min(&a, &b).clone(), std::cmp::max(&a, &b).clone()).unwrap();
             let sq = w.powi(2, p).unwrap();
             prop_assert!(sq.contains(&(&a * &a)) && sq.contains(&(&b * &b)));
+        }
+
+        #[test]
+        fn shift_rounding_is_division(n in any::<i64>(), k in 0u32..90, s in -100i64..100, up in any::<bool>()) {
+            // The shift taken for a power-of-two denominator rounds as the division does.
+            let (n, d) = (BigInt::from(n) << 7usize, BigInt::one() << (k as usize));
+            prop_assert_eq!(shift_round(&n, s - i64::from(k), up), scaled_round(&n, &d, s, up));
+        }
+
+        #[test]
+        fn mul_with_points_is_the_hull(a in r(), b in r(), c in r(), bits in 8u32..200) {
+            // The shortcuts for points give the hull of all four products.
+            let p = Prec::new(bits);
+            let w = Interval::new(std::cmp::min(&b, &c).clone(), std::cmp::max(&b, &c).clone()).unwrap();
+            let x = Interval::point(a.clone());
+            let m = |x: &BigRational, y: &BigRational| fr(x.numer() * y.numer(), x.denom() * y.denom());
+            let all = |u: &Interval, v: &Interval| Interval::hull_of(
+                [m(&u.lo, &v.lo), m(&u.lo, &v.hi), m(&u.hi, &v.lo), m(&u.hi, &v.hi)], p);
+            prop_assert_eq!(x.mul(&w, p), all(&x, &w));
+            prop_assert_eq!(w.mul(&x, p), all(&w, &x));
+            prop_assert_eq!(x.mul(&x, p), all(&x, &x));
+            prop_assert_eq!(w.powi(1, p), Some(w.clone()));
         }
 
         #[test]

@@ -7,9 +7,9 @@ use crate::normal::atom::{self, Atom, AtomId};
 use crate::normal::subst::{depends_on, subst_atom};
 use crate::normal::{func, trig, Assumptions, Limit, NormError, Rat, Sign};
 use crate::syntax::ast::{BinOp, Expr, ExprKind, Func, Reading, Span};
+use foldhash::{HashMap, HashSet};
 use num_integer::Integer;
 use num_traits::{Signed, ToPrimitive};
-use std::collections::{HashMap, HashSet};
 use std::fmt;
 
 /// What names mean while lowering.

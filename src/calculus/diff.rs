@@ -3,7 +3,7 @@
 use crate::normal::atom::{self, Atom, AtomId};
 use crate::normal::subst::atom_depends_on;
 use crate::normal::{func, trig, Assumptions, NormError, Poly, Rat, Q};
-use std::collections::HashMap;
+use foldhash::{HashMap, HashMapExt};
 
 /// With respect to what a derivative is taken.
 pub struct Wrt<'a> {

@@ -16,7 +16,7 @@ use crate::normal::print::plain;
 use crate::normal::Rat;
 use crate::syntax::ast::{Assign, By, Chain, Expr, ExprKind, RelOp, Span};
 use crate::units::check::DimV;
-use std::collections::HashSet;
+use foldhash::HashSet;
 
 /// An equation a verified link adds to the facts, with its conditions.
 type NewFact = (Rat, Vec<Condition>);

@@ -13,7 +13,7 @@ use crate::normal::atom::{self, AtomId};
 use crate::normal::print::plain;
 use crate::normal::Rat;
 use crate::syntax::ast::Name;
-use std::collections::HashMap;
+use foldhash::{HashMap, HashMapExt};
 
 /// A linear form: each atom (the symbol or one of its derivatives) with its coefficient.
 type Form = Vec<(AtomId, Rat)>;

@@ -17,8 +17,8 @@ use crate::normal::atom::{self, AtomId};
 use crate::normal::ranges::Sample;
 use crate::normal::{Sign, Q};
 use crate::syntax::ast::RelOp;
+use foldhash::{HashMap, HashMapExt};
 use num_traits::{FromPrimitive, ToPrimitive};
-use std::collections::HashMap;
 
 /// Points tried per link.
 const POINTS: u64 = 3;

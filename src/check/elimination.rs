@@ -7,8 +7,8 @@ use crate::diag::{Cited, Text};
 use crate::normal::atom::{self, AtomId};
 use crate::normal::subst::{atom_depends_on, subst_atom};
 use crate::normal::{func, Assumptions, NormError, Poly, Rat, Sign};
+use foldhash::{HashMap, HashMapExt, HashSet, HashSetExt};
 use std::cell::RefCell;
-use std::collections::{HashMap, HashSet};
 
 /// Which atoms a fact is solved for first, and whether an atom may be solved for (given
 /// whether solving divides by a quantity the signs do not show nonzero).
@@ -393,7 +393,7 @@ type Pair = (Rank, usize, AtomId, Solution);
 
 /// A fact's ways of being solved (or none) for the unknowns tried, with the solution
 /// once it was needed.
-type Memo = std::collections::HashMap<AtomId, Option<(Setup, Option<Solution>)>>;
+type Memo = foldhash::HashMap<AtomId, Option<(Setup, Option<Solution>)>>;
 
 /// The best (fact, unknown) pair to solve: no division by a quantity of unknown sign if
 /// possible (only such pairs when `strict`), then a fact linear in the unknown (so that

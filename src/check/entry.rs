@@ -12,7 +12,7 @@ use crate::lower::Condition;
 use crate::normal::Rat;
 use crate::syntax::ast::Span;
 use crate::syntax::{parse_file, ParseOptions};
-use std::collections::HashMap;
+use foldhash::{HashMap, HashMapExt};
 use std::fmt;
 use std::time::Duration;
 

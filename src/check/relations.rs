@@ -14,9 +14,9 @@ use crate::normal::atom::{self, AtomId};
 use crate::normal::print::plain;
 use crate::normal::{Rat, Sign, Q};
 use crate::syntax::ast::{BinOp, Expr, ExprKind, RelOp, Span};
+use foldhash::{HashMap, HashMapExt};
 use num_bigint::BigInt;
 use num_traits::{One, Signed};
-use std::collections::HashMap;
 
 impl Checker<'_, '_> {
     /// `!=`: verified when the signs show `lhs − rhs` nonzero.

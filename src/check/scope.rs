@@ -1,7 +1,7 @@
 //! Scope: which names are declared, which are bound, and suggestions for typos.
 
 use crate::syntax::ast::{Expr, ExprKind, Func, Span};
-use std::collections::{HashMap, HashSet};
+use foldhash::{HashMap, HashSet};
 
 /// What a declared name is.
 #[derive(Clone, Debug, PartialEq, Eq)]

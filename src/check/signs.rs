@@ -4,8 +4,8 @@
 
 use crate::normal::print::plain;
 use crate::normal::{Rat, Sign, Q};
+use foldhash::{HashMap, HashMapExt};
 use num_traits::One;
-use std::collections::HashMap;
 
 /// Whether `value` satisfies the sign declared for `name`; the message says why not.
 pub(super) fn respects_sign(

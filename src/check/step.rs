@@ -13,7 +13,7 @@ use crate::lower::{Condition, Need};
 use crate::normal::atom::AtomId;
 use crate::normal::Rat;
 use crate::syntax::ast::{Assign, By, Expr, Link, RelOp, Span};
-use std::collections::HashSet;
+use foldhash::{HashSet, HashSetExt};
 
 /// One link to decide, with what its claim gives it.
 pub(super) struct LinkInput<'a> {

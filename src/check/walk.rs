@@ -15,7 +15,7 @@ use crate::normal::atom::{self, AtomId};
 use crate::normal::print::plain;
 use crate::normal::{Rat, Sign};
 use crate::syntax::ast::{BodyDef, Chain, Expr, File, Item, Label, RelOp, Span, StmtKind};
-use std::collections::{HashMap, HashSet};
+use foldhash::{HashMap, HashMapExt, HashSet, HashSetExt};
 
 /// Facts in scope past which a new given is not checked against all the others for a
 /// contradiction (each check eliminates them all); claims still refuse contradictory

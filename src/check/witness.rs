@@ -24,8 +24,8 @@ use super::elimination::Fact;
 use crate::normal::atom::{self, Atom, AtomId};
 use crate::normal::subst::{atom_depends_on, subst_atom, Subst};
 use crate::normal::{Assumptions, Poly, Rat, Sign, Q};
+use foldhash::{HashMap, HashMapExt};
 use num_bigint::BigInt;
-use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
 /// Facts past which no point is looked for (each solved symbol is substituted into the

@@ -19,7 +19,7 @@ use super::elimination::{zero_by_facts, Fact};
 use crate::normal::atom;
 use crate::normal::limits::Limits;
 use crate::normal::{Assumptions, Poly, Rat, Sign};
-use std::collections::HashMap;
+use foldhash::{HashMap, HashMapExt};
 use std::sync::Mutex;
 
 /// Nesting of square completions tried on one fact (one per atom completed).

@@ -325,7 +325,7 @@ fn units_of(exprs: &[&str], units: &str, opts: &ParseOptions) -> Result<Vec<Stri
     use rigor::units::check::{dim_of, DimV, UnitEnv};
     let file = parse_file(&format!("units {units}"), opts)
         .map_err(|e| format!("in --units: {}", e.message))?;
-    let mut map = std::collections::HashMap::new();
+    let mut map = foldhash::HashMap::default();
     for item in &file.items {
         if let rigor::syntax::ast::Item::Stmt(s) = item {
             if let StmtKind::Units { decls } = &s.kind {

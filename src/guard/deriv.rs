@@ -4,7 +4,7 @@
 
 use super::ball::Skip;
 use crate::syntax::ast::{BinOp, Expr, ExprKind, Func, Span};
-use std::collections::{HashMap, HashSet};
+use foldhash::{HashMap, HashSet, HashSetExt};
 
 fn node(kind: ExprKind) -> Expr {
     Expr::new(kind, Span::default())

@@ -6,9 +6,9 @@ use super::ball::{Ball, Skip};
 use super::deriv::{diff_node, names};
 use super::GuardEnv;
 use crate::syntax::ast::{BinOp, BodyDef, Expr, ExprKind, Func};
+use foldhash::{HashMap, HashMapExt};
 use num_rational::BigRational;
 use num_traits::{ToPrimitive, Zero};
-use std::collections::HashMap;
 use std::sync::OnceLock;
 
 /// Gauss–Legendre nodes and weights on [−1, 1] for `n` points (Newton on Pₙ).
@@ -210,10 +210,10 @@ impl<'a> Evaluator<'a> {
         if var != "t" {
             return Ok(());
         }
-        let mut n = std::collections::HashSet::new();
+        let mut n = foldhash::HashSet::default();
         names(body, &mut n);
         let mut todo: Vec<String> = n.into_iter().collect();
-        let mut seen = std::collections::HashSet::new();
+        let mut seen = foldhash::HashSet::default();
         while let Some(x) = todo.pop() {
             if !seen.insert(x.clone()) {
                 continue;
@@ -222,7 +222,7 @@ impl<'a> Evaluator<'a> {
                 return Err(Skip::Unsupported("a time symbol at another instant".into()));
             }
             if let Some(d) = self.env.defs.get(&x) {
-                let mut m = std::collections::HashSet::new();
+                let mut m = foldhash::HashSet::default();
                 names(d, &mut m);
                 todo.extend(m);
             }

@@ -11,7 +11,7 @@ mod eval;
 pub use ball::{Ball, Skip};
 
 use crate::syntax::ast::{BodyDef, Expr, SignDecl};
-use std::collections::{HashMap, HashSet};
+use foldhash::{HashMap, HashSet, HashSetExt};
 
 /// What names mean, as written.
 #[derive(Clone, Debug, Default)]

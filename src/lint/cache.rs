@@ -6,7 +6,7 @@
 use super::Options;
 use crate::check::{check_source, FileReport, MemoryResolver};
 use crate::syntax::ParseOptions;
-use std::collections::HashMap;
+use foldhash::HashMap;
 use std::sync::{Arc, Mutex};
 
 /// The reports of the derivations checked so far in one run, by their text, and

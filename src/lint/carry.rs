@@ -10,7 +10,7 @@ use super::{
     Verdict,
 };
 use crate::syntax::ast::{Chain, ExprKind, RelOp};
-use std::collections::HashSet;
+use foldhash::{HashSet, HashSetExt};
 
 /// The symbol a chain's first link states, when its left side is a lone symbol (not a
 /// derivative) and the link is `=`.

@@ -5,8 +5,8 @@
 use super::{free, Placed};
 use crate::diag::{Code, Diagnostic};
 use crate::syntax::ast::{Chain, ExprKind, Span};
+use foldhash::HashSet;
 use num_traits::Zero;
-use std::collections::HashSet;
 
 /// A link after the first of a chain.
 pub(super) struct Later {

@@ -23,10 +23,10 @@ use crate::diag::{Diagnostic, LineIndex};
 use crate::syntax::ast::{Chain, Expr, ExprKind, Func, Reading, Span};
 use cache::Checked;
 pub use extract::{pieces, DocKind, Piece};
+use foldhash::{HashSet, HashSetExt};
 use later::{later_is_a_mistake, later_link, later_links, later_needs, Later};
 use partial::{conditions, once, report_all};
 pub use reason::Reason;
-use std::collections::HashSet;
 
 /// The verdict on one chain.
 #[derive(Clone, Debug, PartialEq, Eq)]

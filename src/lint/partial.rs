@@ -10,7 +10,7 @@ use super::{
 use crate::check::{FileReport, Options, Status};
 use crate::diag::LineIndex;
 use crate::syntax::ast::Span;
-use std::collections::HashSet;
+use foldhash::{HashSet, HashSetExt};
 
 /// The links of a chain that needs context, from the last that does not hold on: a
 /// chain of their own when they all hold (`dm = m dA/A = m 2 pi r dr/(pi R^2) = 2 m r

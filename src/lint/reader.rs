@@ -17,7 +17,7 @@ use crate::syntax::ast::{Chain, Expr, ExprKind, RelOp, Span};
 use crate::syntax::latex::{parse_latex_chain, parse_latex_expr, parse_latex_links};
 use crate::syntax::print::source;
 use crate::syntax::ParseOptions;
-use std::collections::{HashMap, HashSet};
+use foldhash::{HashMap, HashMapExt, HashSet, HashSetExt};
 
 /// The state of a document read so far.
 pub(super) struct Reader<'a> {

@@ -9,7 +9,7 @@
 use super::{free, verdict, Build, ChainReport, Checked, Reason, Scope, Verdict};
 use crate::check::Options;
 use crate::syntax::{parse_expr, ParseOptions};
-use std::collections::HashSet;
+use foldhash::HashSet;
 
 /// A `let` or `given` comment in rigor's own syntax, with the symbols it uses that
 /// `names` does not hold declared first (`symbols A` before `let r = A`); `None` when

@@ -6,8 +6,8 @@
 
 use super::poly::Poly;
 use super::rat::Rat;
+use foldhash::HashMap;
 use std::cmp::Ordering;
-use std::collections::HashMap;
 use std::sync::{Arc, LazyLock, OnceLock, RwLock};
 
 /// The interned id of an atom. Ids order monomials inside one process only;

@@ -12,8 +12,8 @@ use super::poly::Poly;
 use super::rat::Rat;
 use super::sign::Sign;
 use crate::interval::{Interval, Prec};
+use foldhash::{HashMap, HashMapExt};
 use num_traits::ToPrimitive;
-use std::collections::HashMap;
 
 /// Atoms deeper than this are not evaluated (every level of nesting costs a root).
 const MAX_DEPTH: u32 = 8;

@@ -216,7 +216,7 @@ fn factor_of(p: &Poly) -> Rat {
 /// its largest power (a multinomial count) times that exponent (the growth of the
 /// coefficients), summed; saturating.
 fn cost(r: &Rat) -> u64 {
-    let mut top: std::collections::HashMap<AtomId, u32> = std::collections::HashMap::new();
+    let mut top: foldhash::HashMap<AtomId, u32> = foldhash::HashMap::default();
     let mut scan = |p: &Poly| {
         for (m, _) in p.terms() {
             for &(a, e) in m.pairs() {

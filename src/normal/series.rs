@@ -9,9 +9,9 @@ use super::rat::Rat;
 use super::sign::{Assumptions, Sign};
 use super::subst::atom_depends_on;
 use super::{func, trig, NormError};
+use foldhash::{HashMap, HashMapExt};
 use num_bigint::BigInt;
 use num_traits::{One, Zero};
-use std::collections::HashMap;
 
 /// Why a series could not be formed.
 #[derive(Clone, Debug, PartialEq, Eq)]

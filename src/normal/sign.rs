@@ -3,8 +3,8 @@
 use super::atom::{self, Atom, AtomId};
 use super::poly::Poly;
 use super::rat::Rat;
+use foldhash::HashMap;
 use num_traits::{Signed, Zero};
-use std::collections::HashMap;
 
 /// What is known of a value's sign.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

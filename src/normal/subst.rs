@@ -8,7 +8,7 @@ use super::rat::Rat;
 use super::sign::Assumptions;
 use super::trig;
 use super::NormError;
-use std::collections::HashMap;
+use foldhash::{HashMap, HashMapExt};
 
 /// Replaces atoms: `map(a)` gives the new value of atom `a` (or `None` to keep it,
 /// in which case atoms inside its arguments are still replaced).

@@ -284,7 +284,7 @@ pub fn tan(u: &Rat) -> Result<Rat, NormError> {
 /// identities such as `sin θ = 2 sin(θ/2) cos(θ/2)` normalise to zero. Multiples above
 /// `MAX_REBASE` are left alone.
 pub fn rebase(r: &Rat, s: &super::sign::Assumptions) -> Result<Rat, NormError> {
-    use std::collections::HashMap;
+    use foldhash::{HashMap, HashMapExt};
     let mut groups: HashMap<Mono, Vec<(super::atom::AtomId, bool, Q)>> = HashMap::new();
     for a in r.atoms() {
         let at = atom::get(a);

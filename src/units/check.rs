@@ -5,9 +5,9 @@
 
 use super::Dim;
 use crate::syntax::ast::{BinOp, BodyDef, Expr, ExprKind, Func, Span};
+use foldhash::{HashMap, HashSet};
 use num_rational::BigRational;
 use num_traits::{One, Zero};
-use std::collections::{HashMap, HashSet};
 
 /// The dimension of a value: a literal zero goes with anything.
 // `Any` is the rare case; boxing the common one would cost an allocation per node.

@@ -9,6 +9,7 @@
 //!
 //! The fast set runs in `cargo test`; `cargo test -- --ignored` runs the long set.
 
+use foldhash::{HashMap, HashMapExt};
 use proptest::prelude::*;
 use rigor::check::{check_source, Justification, MemoryResolver, Options, Status};
 use rigor::diag::FactRef;
@@ -16,7 +17,6 @@ use rigor::guard::{self, Ball, GuardEnv};
 use rigor::lower::{lower, Env};
 use rigor::syntax::ast::{Item, Stmt as Stmt_, StmtKind};
 use rigor::syntax::{parse_expr, parse_file, ParseOptions};
-use std::collections::HashMap;
 use std::time::Duration;
 
 // ---------------------------------------------------------------- random text

@@ -5,6 +5,7 @@
 //! facts under every renaming). Each verdict is compared with the guard's independent
 //! evaluation of the expressions as written. A long soak is behind `--ignored`.
 
+use foldhash::HashMap;
 use proptest::prelude::*;
 use rigor::check::Status;
 use rigor::guard::{self, GuardEnv};
@@ -14,7 +15,6 @@ use rigor::normal::print::plain;
 use rigor::normal::Sign;
 use rigor::syntax::{parse_expr, ParseOptions};
 use rigor::{check_source, MemoryResolver};
-use std::collections::HashMap;
 
 /// Leaves: the signed symbols `x > 0` and `a != 0`, the free `y`, and numbers.
 fn leaf() -> BoxedStrategy<String> {

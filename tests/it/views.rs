@@ -190,9 +190,8 @@ fn the_guard_drops_a_counterexample_outside_the_declarations() {
         }),
         diagnosis: None,
     };
-    let stands = |p: &std::collections::HashMap<String, f64>| {
-        guard::counterexample_stands((&a, &b), &env, p)
-    };
+    let stands =
+        |p: &foldhash::HashMap<String, f64>| guard::counterexample_stands((&a, &b), &env, p);
     // Outside the interval: dropped, and with no exact argument the answer is undecided.
     assert!(matches!(
         guarded(at("-3/5"), stands),
@@ -213,7 +212,8 @@ fn the_guard_drops_a_counterexample_outside_the_declarations() {
         "m".into(),
         Domain::Sign(rigor::syntax::ast::SignDecl::Positive),
     ));
-    let point = |v: f64| std::collections::HashMap::from([("m".to_string(), v)]);
+    let point =
+        |v: f64| -> foldhash::HashMap<String, f64> { [("m".to_string(), v)].into_iter().collect() };
     assert!(guard::respects(&signs, &point(2.0)).is_ok());
     assert!(guard::respects(&signs, &point(-2.0)).is_err());
     assert!(guard::respects(&signs, &point(0.0)).is_err());

@@ -15,11 +15,12 @@
 //! printed (`cargo test --test it differential -- --nocapture`); the pairs are
 //! deterministic (`DIFFERENTIAL_SEED` changes the seed, `PROPTEST_CASES` the number).
 
+use foldhash::{HashMap, HashMapExt};
 use rigor::check::{check_source, MemoryResolver, Options, Status};
 use rigor::guard::{self, GuardEnv};
 use rigor::syntax::ast::Expr;
 use rigor::syntax::{parse_expr, ParseOptions};
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::time::Duration;
 

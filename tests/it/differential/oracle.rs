@@ -439,7 +439,9 @@ fn the_printer_and_the_evaluators_agree_on_precedence() {
     // `-x^2` is −(x²); a quotient times a symbol is parenthesised; odd roots of negatives.
     let e = mul(div(s("a"), n(2)), neg(pow(s("x"), 2)));
     assert_eq!(e.print(), "(a/2) (-x^2)");
-    let pt: HashMap<String, f64> = [("a".to_string(), 3.0), ("x".to_string(), -2.0)].into();
+    let pt: HashMap<String, f64> = [("a".to_string(), 3.0), ("x".to_string(), -2.0)]
+        .into_iter()
+        .collect();
     let parsed = parse_expr(&e.print(), &ParseOptions::default()).unwrap();
     assert_eq!(value(&parsed, &e, &pt), Ok(Some(-6.0)));
     let cube = powq(s("x"), 1, 3);
