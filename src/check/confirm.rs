@@ -32,20 +32,16 @@ impl Rng {
         guard::splitmix64(&mut self.0)
     }
 
-    /// A value of the declared sign, a short binary fraction in [0.25, 4).
-    fn value(&mut self, sign: Sign) -> f64 {
-        let k = (self.next() % 60) as f64;
-        let x = 0.25 + k / 16.0;
+    /// A value of the declared sign, a short binary fraction in [0.25, 4): (4 + k)/16.
+    fn value(&mut self, sign: Sign) -> Q {
+        let k = (self.next() % 60) as i64;
         let negative = match sign {
             Sign::Pos | Sign::NonNeg => false,
             Sign::Neg | Sign::NonPos => true,
             _ => self.next() % 2 == 0,
         };
-        if negative {
-            -x
-        } else {
-            x
-        }
+        let n = if negative { -(4 + k) } else { 4 + k };
+        Q::new(n.into(), 16.into())
     }
 }
 
@@ -121,10 +117,16 @@ impl Checker<'_, '_> {
         // Whether every point tried was ruled out by the facts or the conditions (not
         // by a quantity the guard could not give a value).
         let mut ruled_out = true;
+        let names = self.point_names(input, &sit);
         for _ in 0..POINTS {
             let mut excluded = false;
-            let Some(point) = self.point(input, &sit, &HashMap::new(), &mut rng, &mut excluded)
-            else {
+            let Some(point) = self.point(
+                (input, &names),
+                &sit,
+                &HashMap::new(),
+                &mut rng,
+                &mut excluded,
+            ) else {
                 ruled_out &= excluded;
                 continue;
             };
@@ -165,17 +167,9 @@ impl Checker<'_, '_> {
         status
     }
 
-    /// A point for the guard: `fixed` values, random values of the declared signs for
-    /// the other symbols, `where` values, and the unknowns' values from the elimination;
-    /// `None` when it cannot be made to satisfy the facts.
-    fn point(
-        &self,
-        input: &LinkInput<'_>,
-        sit: &Situation<'_>,
-        fixed: &HashMap<String, Q>,
-        rng: &mut Rng,
-        excluded: &mut bool,
-    ) -> Option<HashMap<String, f64>> {
+    /// The symbols a point for `input` gives values: those of both sides as written and
+    /// of the facts.
+    fn point_names(&self, input: &LinkInput<'_>, sit: &Situation<'_>) -> Vec<String> {
         let env = &self.guard_env;
         let mut names: Vec<String> = guard::free_symbols(input.lhs_expr, env)
             .into_iter()
@@ -188,9 +182,24 @@ impl Checker<'_, '_> {
         }
         names.sort();
         names.dedup();
+        names
+    }
+
+    /// A point for the guard: `fixed` values, random values of the declared signs for
+    /// the other symbols, `where` values, and the unknowns' values from the elimination;
+    /// `None` when it cannot be made to satisfy the facts.
+    fn point(
+        &self,
+        (input, names): (&LinkInput<'_>, &[String]),
+        sit: &Situation<'_>,
+        fixed: &HashMap<String, Q>,
+        rng: &mut Rng,
+        excluded: &mut bool,
+    ) -> Option<HashMap<String, f64>> {
+        let env = &self.guard_env;
         let mut exact: HashMap<AtomId, Q> = HashMap::new();
         let mut point: HashMap<String, f64> = HashMap::new();
-        for n in &names {
+        for n in names {
             let a = atom::sym(n);
             let q = match fixed.get(n) {
                 Some(q) => q.clone(),
@@ -199,7 +208,7 @@ impl Checker<'_, '_> {
                     match crate::normal::ranges::sample(&self.env.signs, a, &t) {
                         Sample::At(q) => q,
                         Sample::Unusable => return None,
-                        Sample::Free => Q::from_f64(rng.value(self.env.signs.declared(a)))?,
+                        Sample::Free => rng.value(self.env.signs.declared(a)),
                     }
                 }
             };
@@ -225,13 +234,16 @@ impl Checker<'_, '_> {
         }
         // The facts must hold there (else the point says nothing); with `strict`, a fact
         // that cannot be evaluated there fails the point too.
-        let tiny = Q::new(1.into(), num_bigint::BigInt::from(10).pow(20));
+        // `q` against ±10^-20, as `q · 10^20` against ±1 (denominators are positive).
+        let scaled = |q: &Q| q.numer() * num_bigint::BigInt::from(10).pow(20);
+        let above = |q: &Q, sign: i32| scaled(q) > q.denom() * sign;
+        let below = |q: &Q, sign: i32| scaled(q) < q.denom() * sign;
         let mut ev = Evaluator::with_values(&exact, Prec::new(128), memo);
         let holds = sit.facts.iter().all(|f| match ev.rat(&f.value) {
-            Some(v) => v.lo() >= &-tiny.clone() && v.hi() <= &tiny,
+            Some(v) => !below(v.lo(), -1) && !above(v.hi(), 1),
             None => !sit.strict,
         }) && sit.nonzero.iter().all(|d| match ev.rat(d) {
-            Some(v) => v.lo() > &tiny || v.hi() < &-tiny.clone(),
+            Some(v) => above(v.lo(), 1) || below(v.hi(), -1),
             None => false,
         });
         let unknown_left = names.iter().any(|n| {
@@ -255,7 +267,8 @@ impl Checker<'_, '_> {
     ) -> Result<(), Diagnostic> {
         let fixed: HashMap<String, Q> = values.iter().cloned().collect();
         let mut rng = Rng(0xC0FFEE);
-        let Some(point) = self.point(input, sit, &fixed, &mut rng, &mut false) else {
+        let names = self.point_names(input, sit);
+        let Some(point) = self.point((input, &names), sit, &fixed, &mut rng, &mut false) else {
             return Ok(());
         };
         let env = &self.guard_env;
