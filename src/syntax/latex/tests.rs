@@ -147,6 +147,24 @@ fn spans_point_into_the_text_given() {
 }
 
 #[test]
+fn a_chain_read_again_has_spans_at_its_new_offset() {
+    // The first reading (at 50) and the remembered one (at 0, then at 9) each point into
+    // the text where they were given: `q_7` at 0..3, `=` at 4, `r` at 6..7.
+    let (text, opts) = ("q_7 = r", ParseOptions::default());
+    for base in [50, 0, 9] {
+        let c = parse_latex_chain(text, base, &opts).unwrap_or_else(|e| panic!("{}", e.message));
+        assert_eq!(c.first.span, Span::new(base, base + 3));
+        assert_eq!(c.links[0].span, Span::new(base + 4, base + 7));
+        assert_eq!(c.links[0].rhs.span, Span::new(base + 6, base + 7));
+    }
+    // An error's span moves too: `)` at 7..8 has nothing to close.
+    for base in [31, 2] {
+        let err = parse_latex_chain("p_8 = a)", base, &opts).unwrap_err();
+        assert_eq!(err.span, Span::new(base + 7, base + 8), "{}", err.message);
+    }
+}
+
+#[test]
 fn bad_input_is_an_error_never_a_panic() {
     for s in [
         r"\foo",
