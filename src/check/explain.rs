@@ -92,6 +92,8 @@ impl Checker<'_, '_> {
         // Unknowns only first (the sides read as written); parameters fixed by the facts
         // only when the facts still tie the difference's quantities.
         let mut tied = Vec::new();
+        // The elimination with the parameters, kept for the explanation below.
+        let with_params = full.clone();
         for (target, steps, left) in [elim(&red.scope, false), Some(full)].into_iter().flatten() {
             tied = tied_atoms(&target, &left, &is_unknown, signs);
             if tied.is_empty() {
@@ -107,9 +109,7 @@ impl Checker<'_, '_> {
         if let Some(d) = self.determined_symbol(red, &tied, span, deadline) {
             return Err(d);
         }
-        let Some((target, _, left)) = elim(&red.scope, true) else {
-            return Ok(None);
-        };
+        let (target, _, left) = with_params;
         // Moments of an abstract body are solved for whenever that shows a step (they
         // cannot be declared): it did not show this one.
         let moment = |a: &AtomId| matches!(&*atom::get(*a), crate::normal::Atom::Moment(..));
