@@ -784,7 +784,8 @@ fn exact_sum(p: &Poly, point: &HashMap<AtomId, Q>) -> (BigInt, BigInt) {
 }
 
 /// `a + b` for fractions with positive denominators, unreduced; a common denominator
-/// by shifting when both are powers of two.
+/// by shifting when both are powers of two, else the least one (so that the
+/// denominator of a long sum stays the lcm of its terms').
 fn frac_add(a: (BigInt, BigInt), b: (BigInt, BigInt)) -> (BigInt, BigInt) {
     let two_power = |d: &BigInt| {
         let z = d.trailing_zeros()?;
@@ -796,7 +797,11 @@ fn frac_add(a: (BigInt, BigInt), b: (BigInt, BigInt)) -> (BigInt, BigInt) {
     match (two_power(&a.1), two_power(&b.1)) {
         (Some(x), Some(y)) if x >= y => (a.0 + (b.0 << (x - y)), a.1),
         (Some(x), Some(y)) => ((a.0 << (y - x)) + b.0, b.1),
-        _ => (a.0 * &b.1 + b.0 * &a.1, a.1 * b.1),
+        _ => {
+            let g = num_integer::Integer::gcd(&a.1, &b.1);
+            let (ga, gb) = (&a.1 / &g, &b.1 / &g);
+            (a.0 * &gb + b.0 * &ga, ga * b.1)
+        }
     }
 }
 
@@ -927,6 +932,28 @@ impl<'a> Evaluator<'a> {
                     }
                 }
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #[test]
+        fn fraction_sums_are_exact(terms in prop::collection::vec((-1000i64..1000, 0u32..12, 1i64..40), 1..30)) {
+            // Denominators that are powers of two (shifted), equal, or neither (lcm).
+            let mut acc = (BigInt::zero(), BigInt::one());
+            let mut want = Q::zero();
+            for (n, k, odd) in terms {
+                let d = if odd % 3 == 0 { BigInt::one() << (k as usize) } else { BigInt::from(odd) };
+                want += Q::new(n.into(), d.clone());
+                acc = frac_add(acc, (n.into(), d));
+            }
+            prop_assert!(acc.1 > BigInt::zero());
+            prop_assert_eq!(Q::new(acc.0, acc.1), want);
         }
     }
 }
