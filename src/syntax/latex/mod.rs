@@ -26,6 +26,7 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use tokens::{tokens, Tok, GREEK};
 
+mod memo;
 mod physics;
 mod tokens;
 
@@ -44,58 +45,7 @@ pub fn parse_latex_chain(
     base: usize,
     opts: &ParseOptions,
 ) -> Result<Chain, SyntaxError> {
-    // `rigor lint` checks a note's derivation again and again (with a value, with a
-    // relation left out), and every check reads the same displays: each text is read
-    // once per process, at offset 0, and its spans moved to `base`. Only the spans
-    // depend on `base`.
-    type Memo = std::collections::HashMap<(String, usize), Result<Chain, SyntaxError>>;
-    static MEMO: std::sync::Mutex<Option<Memo>> = std::sync::Mutex::new(None);
-    const KEEP: usize = 4096;
-    let lock = || MEMO.lock().unwrap_or_else(|e| e.into_inner());
-    let key = (text.to_string(), opts.max_depth);
-    let known = lock().as_ref().and_then(|m| m.get(&key).cloned());
-    let read = known.unwrap_or_else(|| {
-        let read = read_chain(text, opts);
-        let mut memo = lock();
-        let memo = memo.get_or_insert_with(Memo::new);
-        if memo.len() >= KEEP {
-            memo.clear();
-        }
-        memo.insert(key, read.clone());
-        read
-    });
-    match read {
-        Ok(mut chain) => {
-            shift_expr(&mut chain.first, base);
-            for l in &mut chain.links {
-                l.span = shift(l.span, base);
-                shift_expr(&mut l.rhs, base);
-            }
-            Ok(chain)
-        }
-        Err(mut e) => {
-            e.span = shift(e.span, base);
-            Err(e)
-        }
-    }
-}
-
-fn shift(s: Span, by: usize) -> Span {
-    Span::new(s.start + by, s.end + by)
-}
-
-/// `e` with every span moved `by` bytes on.
-fn shift_expr(e: &mut Expr, by: usize) {
-    e.span = shift(e.span, by);
-    match &mut e.kind {
-        ExprKind::Num(_) | ExprKind::Sym(_) | ExprKind::Pi => {}
-        ExprKind::Neg(a) => shift_expr(a, by),
-        ExprKind::Bin(_, a, b) => {
-            shift_expr(a, by);
-            shift_expr(b, by);
-        }
-        ExprKind::Call(_, args) => args.iter_mut().for_each(|a| shift_expr(a, by)),
-    }
+    memo::remembered(text, base, opts, read_chain)
 }
 
 /// [`parse_latex_chain`] at offset 0, read afresh.
