@@ -787,10 +787,7 @@ fn exact_sum(p: &Poly, point: &HashMap<AtomId, Q>) -> (BigInt, BigInt) {
 /// by shifting when both are powers of two, else the least one (so that the
 /// denominator of a long sum stays the lcm of its terms').
 fn frac_add(a: (BigInt, BigInt), b: (BigInt, BigInt)) -> (BigInt, BigInt) {
-    let two_power = |d: &BigInt| {
-        let z = d.trailing_zeros()?;
-        (d.bits() == z + 1).then_some(z as usize)
-    };
+    let two_power = |d: &BigInt| crate::interval::two_exponent(d).map(|k| k as usize);
     if a.1 == b.1 {
         return (a.0 + b.0, a.1);
     }

@@ -105,13 +105,16 @@ fn round_frac(n: &BigInt, d: &BigInt, bits: u32, up: bool) -> Option<BigRational
     let s = bits as i64 + 1 - e;
     // A power-of-two denominator (dyadic endpoints, and their products and sums): the
     // rounding is a shift.
-    if let Some(k) = d
-        .trailing_zeros()
-        .filter(|&k| d.is_positive() && d.bits() == k + 1)
-    {
+    if let Some(k) = two_exponent(d) {
         return Some(dyadic(shift_round(n, s - k as i64, up), -s));
     }
     Some(dyadic(scaled_round(n, d, s, up), -s))
+}
+
+/// `k` where `d = 2^k` (`d > 0`), else `None`.
+pub(crate) fn two_exponent(d: &BigInt) -> Option<u64> {
+    d.trailing_zeros()
+        .filter(|&k| d.is_positive() && d.bits() == k + 1)
 }
 
 /// `n * 2^s / d` rounded to an integer, down or up, by a division; `d > 0`.

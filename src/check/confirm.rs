@@ -235,7 +235,8 @@ impl Checker<'_, '_> {
         // The facts must hold there (else the point says nothing); with `strict`, a fact
         // that cannot be evaluated there fails the point too.
         // `q` against ±10^-20, as `q · 10^20` against ±1 (denominators are positive).
-        let scaled = |q: &Q| q.numer() * num_bigint::BigInt::from(10).pow(20);
+        let ten20 = num_bigint::BigInt::from(10).pow(20);
+        let scaled = |q: &Q| q.numer() * &ten20;
         let above = |q: &Q, sign: i32| scaled(q) > q.denom() * sign;
         let below = |q: &Q, sign: i32| scaled(q) < q.denom() * sign;
         let mut ev = Evaluator::with_values(&exact, Prec::new(128), memo);
