@@ -657,23 +657,23 @@ pub fn lint(
         ..rigor::check::Options::default()
     };
     let mut bad_input = false;
-    let mut reports = Vec::new();
-    // The documents are linted on every core (each on one thread), reported in order.
-    let linted = rigor::files::parallel(docs, |d| {
+    let mut readable = Vec::new();
+    for d in docs {
         let name = d.display().to_string();
-        rigor::files::read(d, options.max_file_size)
-            .map(|text| rigor::lint::lint(&name, &text, DocKind::of(&name), &options))
-            .map_err(|e| (name, e))
-    });
-    for r in linted {
-        match r {
-            Ok(report) => reports.push(report),
-            Err((name, e)) => {
+        match rigor::files::read(d, options.max_file_size) {
+            Ok(text) => readable.push(rigor::lint::Document {
+                kind: DocKind::of(&name),
+                name,
+                text,
+            }),
+            Err(e) => {
                 errln!("error: cannot read {name}: {}", read_error(&e));
                 bad_input = true;
             }
         }
     }
+    // The scopes of all the documents are checked on every core; reported in order.
+    let reports = rigor::lint::lint_all(&readable, &options);
     for r in &reports {
         match format {
             Format::Json => outln!("{}", rigor::render::lint::json(r)),
