@@ -43,6 +43,11 @@ pub struct Options {
     /// it are not checked. For a caller that checks the text again with that quantity
     /// declared an unknown (`rigor lint`), the rest would be checked for nothing.
     pub stop_at_determined_given: bool,
+    /// Only the verdicts are wanted: a failing `=` link is reported "not verified"
+    /// without the search for a counterexample or the naming of the mistake (for a
+    /// caller that asks only whether links hold, as `rigor lint` does when it tests
+    /// whether a stated relation forces its sides to zero). Nothing more is verified.
+    pub verdicts_only: bool,
 }
 
 impl Default for Options {
@@ -56,6 +61,7 @@ impl Default for Options {
             clock: crate::clock::system(),
             corrupt_for_tests: false,
             stop_at_determined_given: false,
+            verdicts_only: false,
         }
     }
 }

@@ -385,6 +385,14 @@ impl Checker<'_, '_> {
                 side_conditions: conditions,
             });
         }
+        if self.loader.opts.verdicts_only {
+            return Err(Diagnostic::error(
+                Code::NotVerified,
+                "not verified",
+                input.span,
+                "not verified",
+            ));
+        }
         // Undetermined unknowns are explained by `not_equal`; nothing is refuted then.
         let stuck = red.elim.as_ref().is_some_and(|e| !e.stuck.is_empty());
         let sides = if stuck || red.timed_out() {

@@ -474,6 +474,7 @@ pub fn check(
         clock: rigor::clock::system(),
         corrupt_for_tests: false,
         stop_at_determined_given: false,
+        verdicts_only: false,
     };
     let mut reports = rigor::files::check_paths(paths, &options);
     name_the_flags(&mut reports);

@@ -21,14 +21,18 @@ pub(crate) struct Checked {
     parsed: Mutex<HashMap<String, bool>>,
 }
 
-/// Reports by the name they were checked under and whether the check stopped at a
-/// determined quantity, then by the derivation's text.
-type Reports = HashMap<(String, bool), HashMap<String, Arc<FileReport>>>;
+/// Reports by the name they were checked under, whether the check stopped at a
+/// determined quantity and whether it gave verdicts only, then by the derivation's text.
+type Reports = HashMap<(String, bool, bool), HashMap<String, Arc<FileReport>>>;
 
 impl Checked {
     /// The report of `deriv` checked as `name`, checked now unless it was before.
     pub(crate) fn report(&self, name: &str, deriv: &str, opts: &Options) -> Arc<FileReport> {
-        let key = (name.to_string(), opts.stop_at_determined_given);
+        let key = (
+            name.to_string(),
+            opts.stop_at_determined_given,
+            opts.verdicts_only,
+        );
         let known = lock(&self.reports)
             .get(&key)
             .and_then(|m| m.get(deriv))
@@ -41,7 +45,7 @@ impl Checked {
         if key.1 && !r.names_determined_given() {
             // It did not stop: it is the whole check.
             reports
-                .entry((name.to_string(), false))
+                .entry((name.to_string(), false, key.2))
                 .or_default()
                 .insert(deriv.to_string(), r.clone());
         }

@@ -472,3 +472,60 @@ fn a_check_may_stop_where_the_facts_determine_a_given_quantity() {
     assert_eq!(determined(&stopped), 1, "{:?}", stopped.diagnostics);
     assert_eq!(stopped.claims.len(), 2, "{:?}", stopped.claims);
 }
+
+/// `verdicts_only` (what `rigor lint` checks with when it asks whether a stated relation
+/// forces its sides to zero): the same links hold and fail as in a full check, and a
+/// failing `=` link is "not verified" with no counterexample sought.
+#[test]
+fn verdicts_only_keeps_every_verdict_and_drops_the_explanations() {
+    let src = concat!(
+        "symbols m g h > 0\n",
+        "symbols v\n",
+        "given $$ \\frac{1}{2} m v^2 = m g h $$\n",
+        "claim $$ v^2 = 2 g h $$\n",
+        "claim $$ v^2 = 3 g h $$\n",
+        "claim $$ (g + h)^2 = g^2 + 2 g h + h^2 = g^2 + h^2 $$\n",
+    );
+    let check = |opts: &rigor::Options| {
+        rigor::check_source("v.deriv", src, opts, &rigor::MemoryResolver::new())
+    };
+    let full = check(&crate::no_budget());
+    let lean = check(&rigor::Options {
+        verdicts_only: true,
+        ..crate::no_budget()
+    });
+    let verdicts = |r: &rigor::check::FileReport| -> Vec<Vec<bool>> {
+        r.claims
+            .iter()
+            .map(|c| c.links.iter().map(|l| l.status.is_verified()).collect())
+            .collect()
+    };
+    assert_eq!(
+        verdicts(&full),
+        vec![vec![true], vec![false], vec![true, false]],
+        "{:?}",
+        full.diagnostics
+    );
+    assert_eq!(verdicts(&lean), verdicts(&full), "{:?}", lean.diagnostics);
+    // The full check refutes the two false links, with a counterexample.
+    let refuted = |r: &rigor::check::FileReport| {
+        r.diagnostics
+            .iter()
+            .filter(|d| d.code == rigor::diag::Code::Refuted)
+            .count()
+    };
+    assert_eq!(refuted(&full), 2, "{:?}", full.diagnostics);
+    assert_eq!(refuted(&lean), 0, "{:?}", lean.diagnostics);
+    let errors: Vec<_> = lean
+        .diagnostics
+        .iter()
+        .filter(|d| d.severity == rigor::diag::Severity::Error)
+        .collect();
+    assert_eq!(errors.len(), 2, "{errors:?}");
+    assert!(
+        errors
+            .iter()
+            .all(|d| d.code == rigor::diag::Code::NotVerified && d.notes.is_empty()),
+        "{errors:?}"
+    );
+}

@@ -421,3 +421,33 @@ fn a_verified_chain_says_what_it_assumes_and_declared_signs_remove_it() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Several documents linted together (their scopes in one queue, most chains first)
+/// give each document the report it has alone, in the order given.
+#[test]
+fn documents_linted_together_are_reported_as_each_alone() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let names = [
+        "tests/lint/rod_notes.md",
+        "tests/lint/handout_notes.tex",
+        "tests/lint/scopes_notes.md",
+        "tests/lint/readings_given_value.md",
+        "tests/lint/corpus/sections_carry.md",
+    ];
+    let docs: Vec<rigor::lint::Document> = names
+        .iter()
+        .map(|n| rigor::lint::Document {
+            name: n.to_string(),
+            text: std::fs::read_to_string(root.join(n)).expect("the fixture reads"),
+            kind: rigor::lint::DocKind::of(n),
+        })
+        .collect();
+    let opts = crate::no_budget();
+    let together = rigor::lint::lint_all(&docs, &opts);
+    assert_eq!(together.len(), docs.len());
+    for (d, r) in docs.iter().zip(&together) {
+        let alone = rigor::lint::lint(&d.name, &d.text, d.kind, &opts);
+        assert!(!alone.chains.is_empty(), "{}: no chains", d.name);
+        assert_eq!(format!("{r:?}"), format!("{alone:?}"), "{}", d.name);
+    }
+}
