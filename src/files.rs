@@ -242,6 +242,140 @@ pub fn parallel<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Ve
         .collect()
 }
 
+/// Work in two stages on every core, from one queue. Each item is first prepared
+/// (`prepare`, the items with the largest `size` first), which gives it parts, each with
+/// a weight; then each part is done (`part`), the heaviest ready part first. A worker
+/// prepares while any item is left, so no core waits for the others to finish
+/// preparing, and a heavy part starts as soon as it is known. `finish` is called with
+/// an item once its last part is done, on the thread that did that part (never for an
+/// item without parts). Returns each
+/// item prepared, with its parts' results in their order (`None` only for an item whose
+/// preparation did not return).
+pub fn staged<T: Sync, P: Send + Sync, R: Send>(
+    items: &[T],
+    size: impl Fn(&T) -> usize,
+    prepare: impl Fn(&T) -> (P, Vec<usize>) + Sync,
+    part: impl Fn(&P, usize) -> R + Sync,
+    finish: impl Fn(&P) + Sync,
+) -> Vec<Option<(P, Vec<R>)>> {
+    let mut unprepared: Vec<usize> = (0..items.len()).collect();
+    // Stable: among items of one size the earlier is prepared first (popped last-first).
+    unprepared.sort_by_key(|&i| std::cmp::Reverse(size(&items[i])));
+    unprepared.reverse();
+    let queue = Queue {
+        state: Mutex::new(Stages {
+            unprepared,
+            preparing: 0,
+            ready: std::collections::BinaryHeap::new(),
+        }),
+        changed: std::sync::Condvar::new(),
+    };
+    let prepared: Vec<std::sync::OnceLock<P>> =
+        items.iter().map(|_| std::sync::OnceLock::new()).collect();
+    let left: Vec<AtomicUsize> = items.iter().map(|_| AtomicUsize::new(0)).collect();
+    let results: Mutex<Vec<Vec<Option<R>>>> =
+        Mutex::new(items.iter().map(|_| Vec::new()).collect());
+    let workers = std::thread::available_parallelism().map_or(2, |n| n.get());
+    std::thread::scope(|s| {
+        for _ in 0..workers {
+            s.spawn(|| {
+                while let Some(task) = queue.next() {
+                    match task {
+                        Task::Prepare(i) => {
+                            let _preparing = Preparing(&queue);
+                            let (p, weights) = prepare(&items[i]);
+                            left[i].store(weights.len(), Ordering::Release);
+                            lock(&results)[i] = weights.iter().map(|_| None).collect();
+                            prepared[i].get_or_init(|| p);
+                            let mut state = lock(&queue.state);
+                            for (k, w) in weights.into_iter().enumerate() {
+                                state
+                                    .ready
+                                    .push((w, std::cmp::Reverse(i), std::cmp::Reverse(k)));
+                            }
+                        }
+                        Task::Part(i, k) => {
+                            let Some(p) = prepared[i].get() else {
+                                continue;
+                            };
+                            let r = part(p, k);
+                            if let Some(slot) = lock(&results)[i].get_mut(k) {
+                                *slot = Some(r);
+                            }
+                            if left[i].fetch_sub(1, Ordering::AcqRel) == 1 {
+                                finish(p);
+                            }
+                        }
+                    }
+                }
+            });
+        }
+    });
+    let results = results.into_inner().unwrap_or_else(|e| e.into_inner());
+    prepared
+        .into_iter()
+        .zip(results)
+        .map(|(p, rs)| Some((p.into_inner()?, rs.into_iter().flatten().collect())))
+        .collect()
+}
+
+/// [`staged`]'s queue: the work left, and a signal when an item has been prepared.
+struct Queue {
+    state: Mutex<Stages>,
+    changed: std::sync::Condvar,
+}
+
+struct Stages {
+    /// The items not yet prepared, the next last.
+    unprepared: Vec<usize>,
+    /// How many items are being prepared.
+    preparing: usize,
+    /// The parts ready: weight, then item and part (the earlier first among equals).
+    ready:
+        std::collections::BinaryHeap<(usize, std::cmp::Reverse<usize>, std::cmp::Reverse<usize>)>,
+}
+
+enum Task {
+    Prepare(usize),
+    Part(usize, usize),
+}
+
+impl Queue {
+    /// The next task: an item to prepare while any is left, else the heaviest ready
+    /// part; waits while items being prepared may bring more; `None` when all is done.
+    fn next(&self) -> Option<Task> {
+        let mut state = lock(&self.state);
+        loop {
+            if let Some(i) = state.unprepared.pop() {
+                state.preparing += 1;
+                return Some(Task::Prepare(i));
+            }
+            if let Some((_, std::cmp::Reverse(i), std::cmp::Reverse(k))) = state.ready.pop() {
+                return Some(Task::Part(i, k));
+            }
+            if state.preparing == 0 {
+                return None;
+            }
+            state = self.changed.wait(state).unwrap_or_else(|e| e.into_inner());
+        }
+    }
+}
+
+/// An item being prepared, given back even if preparing it panics, so that no worker
+/// waits for it for ever.
+struct Preparing<'q>(&'q Queue);
+
+impl Drop for Preparing<'_> {
+    fn drop(&mut self) {
+        lock(&self.0.state).preparing -= 1;
+        self.0.changed.notify_all();
+    }
+}
+
+fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|e| e.into_inner())
+}
+
 /// [`parallel`] over files, the largest started first (a long file started last would
 /// leave the other cores idle while it finishes); results in the order of `jobs`.
 fn largest_first<R: Send>(
@@ -341,4 +475,54 @@ pub fn check_paths(paths: &[PathBuf], opts: &Options) -> Vec<FileReport> {
     }
     out.extend(early.map(|e| e.1));
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::staged;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    /// Every part done once, the results in the parts' order whatever order they ran
+    /// in, and `finish` once per item with parts, after all of them.
+    #[test]
+    fn staged_does_every_part_once_and_finishes_each_item_last() {
+        let items: Vec<usize> = vec![3, 0, 7, 1, 12, 5];
+        let done: Vec<AtomicUsize> = items.iter().map(|_| AtomicUsize::new(0)).collect();
+        let finished: Vec<AtomicUsize> = items.iter().map(|_| AtomicUsize::new(0)).collect();
+        let out = staged(
+            &items,
+            |&n| n,
+            |&n| {
+                let i = items.iter().position(|&m| m == n).unwrap_or(0);
+                // Weights that do not follow the parts' order.
+                (i, (0..n).map(|k| (k * 7) % 5).collect())
+            },
+            |&i, k| {
+                done[i].fetch_add(1, Ordering::SeqCst);
+                (i, k * k)
+            },
+            |&i| {
+                assert_eq!(done[i].load(Ordering::SeqCst), items[i], "item {i}");
+                finished[i].fetch_add(1, Ordering::SeqCst);
+            },
+        );
+        assert_eq!(out.len(), items.len());
+        for (i, (r, &n)) in out.iter().zip(&items).enumerate() {
+            let Some((p, parts)) = r else {
+                panic!("item {i} not prepared");
+            };
+            assert_eq!(*p, i);
+            let want: Vec<(usize, usize)> = (0..n).map(|k| (i, k * k)).collect();
+            assert_eq!(parts, &want, "item {i}");
+            assert_eq!(done[i].load(Ordering::SeqCst), n);
+            assert_eq!(
+                finished[i].load(Ordering::SeqCst),
+                usize::from(n > 0),
+                "item {i}"
+            );
+        }
+        let none: Vec<Option<(usize, Vec<usize>)>> =
+            staged(&[] as &[usize], |_| 0, |_| (0, vec![]), |_, k| k, |_| {});
+        assert!(none.is_empty());
+    }
 }

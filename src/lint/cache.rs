@@ -56,6 +56,14 @@ impl Checked {
         r
     }
 
+    /// Forgets everything (once the document's last scope is checked: the memory is
+    /// given back by the thread that checked it, not all at the end by one thread).
+    pub(crate) fn clear(&self) {
+        let reports = std::mem::take(&mut *lock(&self.reports));
+        let parsed = std::mem::take(&mut *lock(&self.parsed));
+        drop((reports, parsed));
+    }
+
     /// Whether a generated statement reads on its own (one bad statement must not stop
     /// the rest of the document from being checked).
     pub(crate) fn parses(&self, stmt: &str) -> bool {

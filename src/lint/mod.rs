@@ -13,6 +13,7 @@ mod later;
 mod mass;
 mod partial;
 mod premises;
+mod queue;
 mod reader;
 mod reason;
 mod sound;
@@ -26,6 +27,7 @@ pub use extract::{pieces, DocKind, Piece};
 use foldhash::{HashSet, HashSetExt};
 use later::{later_is_a_mistake, later_link, later_links, later_needs, Later};
 use partial::{conditions, once, report_all};
+pub use queue::{lint_all, Document};
 pub use reason::Reason;
 
 /// The verdict on one chain.
@@ -452,87 +454,6 @@ pub fn lint(name: &str, doc: &str, kind: DocKind, opts: &Options) -> LintReport 
     lint_all(std::slice::from_ref(&doc), opts)
         .pop()
         .unwrap_or_default()
-}
-
-/// A document to lint: its name, its text and how it is written.
-pub struct Document {
-    /// The name reports give it (its path).
-    pub name: String,
-    /// Its text.
-    pub text: String,
-    /// Markdown or LaTeX.
-    pub kind: DocKind,
-}
-
-/// A document read into scopes, before they are checked.
-struct Read {
-    report: LintReport,
-    scopes: Vec<Scope>,
-    cleaned: String,
-    cache: Checked,
-}
-
-/// Checks the chains of each document as [`lint`] does, the reports in the order given.
-/// The scopes of all the documents are checked in one queue on every core, those with
-/// the most chains first: a long document met last (or one long section) does not
-/// leave the other cores idle while it finishes. Scopes share nothing but their
-/// document's reports of identical derivations.
-pub fn lint_all(docs: &[Document], opts: &Options) -> Vec<LintReport> {
-    let read = crate::files::parallel(docs, |d| {
-        let mut report = LintReport {
-            path: d.name.clone(),
-            source: d.text.clone(),
-            chains: Vec::new(),
-        };
-        let cache = Checked::default();
-        let mut reader = reader::Reader::new(&d.text, opts, &cache);
-        for piece in pieces(&d.text, d.kind) {
-            reader.piece(piece, &mut report.chains);
-        }
-        let (scopes, cleaned) = reader.finish();
-        Read {
-            report,
-            scopes,
-            cleaned,
-            cache,
-        }
-    });
-    let mut jobs: Vec<(usize, usize)> = read
-        .iter()
-        .enumerate()
-        .flat_map(|(d, r)| (0..r.scopes.len()).map(move |s| (d, s)))
-        .collect();
-    // Most chains first (a stable sort: otherwise in document order).
-    jobs.sort_by_key(|&(d, s)| std::cmp::Reverse(read[d].scopes[s].items.len()));
-    let lines: Vec<LineIndex<'_>> = read.iter().map(|r| LineIndex::new(&r.cleaned)).collect();
-    let checked = crate::files::parallel(&jobs, |&(d, s)| {
-        let (r, scope) = (&read[d], &read[d].scopes[s]);
-        let mut out = Vec::new();
-        scope.close((&r.report.path, &lines[d]), (opts, &r.cache), &mut out);
-        // A condition or value stated in a sentence (`$\mu = 0$`) is not a chain.
-        out.retain(|c| {
-            !(c.verdict == Verdict::NeedsContext && scope.quiet.contains(&c.span.start))
-        });
-        out
-    });
-    drop(lines);
-    // Each document's scopes in their order, as one document alone is reported.
-    let mut by_scope: Vec<Vec<Option<Vec<ChainReport>>>> = read
-        .iter()
-        .map(|r| (0..r.scopes.len()).map(|_| None).collect())
-        .collect();
-    for (&(d, s), out) in jobs.iter().zip(checked) {
-        by_scope[d][s] = Some(out);
-    }
-    read.into_iter()
-        .zip(by_scope)
-        .map(|(r, outs)| {
-            let mut report = r.report;
-            report.chains.extend(outs.into_iter().flatten().flatten());
-            report.chains.sort_by_key(|c| c.span.start);
-            report
-        })
-        .collect()
 }
 
 /// A diagnostic about the derivation made from the document, with the lines it cites
