@@ -27,16 +27,35 @@ pub struct Fact {
 /// states nothing new (notes state a relation, then use it as stated). The first is
 /// kept, so the facts are cited as before.
 pub(super) fn distinct(facts: Vec<Fact>) -> Vec<Fact> {
-    let mut seen: HashSet<Rat> = HashSet::new();
-    let mut out = Vec::with_capacity(facts.len());
+    let mut out: Vec<Fact> = Vec::with_capacity(facts.len());
     for f in facts {
-        if seen.contains(&f.value) || seen.contains(&f.value.neg()) {
-            continue;
+        if !out.iter().any(|g| same_up_to_sign(&g.value, &f.value)) {
+            out.push(f);
         }
-        seen.insert(f.value.clone());
-        out.push(f);
     }
     out
+}
+
+/// The values of [`distinct`]`(facts)`, without copying the facts.
+pub(super) fn distinct_values(facts: &[Fact]) -> Vec<Rat> {
+    let mut out: Vec<&Rat> = Vec::with_capacity(facts.len());
+    for f in facts {
+        if !out.iter().any(|g| same_up_to_sign(g, &f.value)) {
+            out.push(&f.value);
+        }
+    }
+    out.into_iter().cloned().collect()
+}
+
+/// `a = b` or `a = -b`. Normal forms are canonical, so values equal up to sign have the
+/// same monomials in the same order: only those are compared (and negated) in full,
+/// and nothing is hashed (hashing a rational coefficient divides).
+fn same_up_to_sign(a: &Rat, b: &Rat) -> bool {
+    let monomials = |p: &Poly, q: &Poly| {
+        p.terms().len() == q.terms().len()
+            && p.terms().iter().zip(q.terms()).all(|(s, t)| s.0 == t.0)
+    };
+    monomials(a.num(), b.num()) && monomials(a.den(), b.den()) && (a == b || a.neg() == *b)
 }
 
 /// One solved unknown.

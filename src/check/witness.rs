@@ -591,4 +591,29 @@ mod tests {
             }
         }
     }
+
+    /// A fact equal to one before it, or to its negation (`F = m a`, then `m a = F`), is
+    /// left out, the first kept; a multiple (the relation halved) and facts that differ
+    /// only in a coefficient are kept.
+    #[test]
+    fn repeats_and_negations_are_left_out_the_first_kept() {
+        let signs = positive(&["m", "g", "a", "F"]);
+        let fs = facts(
+            &[
+                "F = m*a",
+                "m*a = F",
+                "F/2 = m*a/2",
+                "F = 2*m*a",
+                "m*g = F + m*a",
+                "F = m*a",
+                "-F = -2*m*a",
+            ],
+            &signs,
+        );
+        let kept = crate::check::elimination::distinct(fs.clone());
+        let lines: Vec<String> = kept.iter().map(|f| format!("{:?}", f.name.fact)).collect();
+        assert_eq!(lines, ["Line(1)", "Line(3)", "Line(4)", "Line(5)"]);
+        let values: Vec<_> = kept.iter().map(|f| f.value.clone()).collect();
+        assert_eq!(crate::check::elimination::distinct_values(&fs), values);
+    }
 }

@@ -310,10 +310,7 @@ impl Consistent {
     ///
     /// [`contradiction`]: super::elimination::contradiction
     pub fn check(&mut self, facts: &[Fact], signs: &Assumptions) -> Option<crate::diag::Text> {
-        let values: Vec<Rat> = super::elimination::distinct(facts.to_vec())
-            .into_iter()
-            .map(|f| f.value)
-            .collect();
+        let values: Vec<Rat> = super::elimination::distinct_values(facts);
         if self.signs != *signs {
             *self = Consistent {
                 signs: signs.clone(),
