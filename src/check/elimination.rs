@@ -51,11 +51,14 @@ pub(super) fn distinct_values(facts: &[Fact]) -> Vec<Rat> {
 /// same monomials in the same order: only those are compared (and negated) in full,
 /// and nothing is hashed (hashing a rational coefficient divides).
 fn same_up_to_sign(a: &Rat, b: &Rat) -> bool {
-    let monomials = |p: &Poly, q: &Poly| {
-        p.terms().len() == q.terms().len()
-            && p.terms().iter().zip(q.terms()).all(|(s, t)| s.0 == t.0)
-    };
-    monomials(a.num(), b.num()) && monomials(a.den(), b.den()) && (a == b || a.neg() == *b)
+    same_monomials(a.num(), b.num())
+        && same_monomials(a.den(), b.den())
+        && (a == b || a.neg() == *b)
+}
+
+/// Whether `p` and `q` have the same monomials (their coefficients aside).
+fn same_monomials(p: &Poly, q: &Poly) -> bool {
+    p.terms().len() == q.terms().len() && p.terms().iter().zip(q.terms()).all(|(s, t)| s.0 == t.0)
 }
 
 /// One solved unknown.
@@ -103,7 +106,13 @@ pub fn eliminate(
     deadline: Option<Deadline>,
 ) -> Result<Elimination, NormError> {
     // A constant multiple of one fact needs no elimination (and no side condition).
-    for f in facts {
+    // Normal forms are canonical, so a nonzero constant multiple of a fact has its
+    // denominator and its numerator's monomials: only such facts are divided by.
+    let may_be_multiple = |f: &&Fact| {
+        target.is_zero()
+            || (target.den() == f.value.den() && same_monomials(target.num(), f.value.num()))
+    };
+    for f in facts.iter().filter(may_be_multiple) {
         if let Ok(r) = target.div(&f.value) {
             if r.as_constant().is_some() {
                 return Ok(Elimination {

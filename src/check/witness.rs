@@ -616,4 +616,28 @@ mod tests {
         let values: Vec<_> = kept.iter().map(|f| f.value.clone()).collect();
         assert_eq!(crate::check::elimination::distinct_values(&fs), values);
     }
+
+    /// A target that is a constant multiple of one fact is settled by that fact alone,
+    /// before any unknown is eliminated (here `a`, which the first fact would give); one
+    /// with the same monomials in other proportions is not.
+    #[test]
+    fn a_constant_multiple_of_a_fact_is_recognised() {
+        let signs = positive(&["m", "g", "a", "F", "L"]);
+        let fs = facts(&["a = g", "F*L = m*a/g"], &signs);
+        let multiple = |lhs: &str, rhs: &str| {
+            let target = r(lhs, &signs).sub(&r(rhs, &signs)).unwrap();
+            let unknown = |x: AtomId| x == atom::sym("a");
+            let e =
+                crate::check::elimination::eliminate(&target, &fs, &unknown, &signs, None).unwrap();
+            // Settled by the fact alone: no unknown solved for.
+            assert!(e.multiple_of.is_none() || e.steps.is_empty(), "{e:?}");
+            e.multiple_of.map(|c| format!("{:?}", c.fact))
+        };
+        assert_eq!(
+            multiple("3*F*L/2", "3*m*a/(2*g)"),
+            Some("Line(2)".to_string())
+        );
+        assert_eq!(multiple("m*a", "F*L*g"), Some("Line(2)".to_string()));
+        assert_eq!(multiple("2*F*L", "m*a/g"), None);
+    }
 }
