@@ -47,9 +47,8 @@ pub(super) fn distinct_values(facts: &[Fact]) -> Vec<Rat> {
     out.into_iter().cloned().collect()
 }
 
-/// `a = b` or `a = -b`. Normal forms are canonical, so values equal up to sign have the
-/// same monomials in the same order: only those are compared (and negated) in full,
-/// and nothing is hashed (hashing a rational coefficient divides).
+/// `a = b` or `a = -b`, comparing in full (nothing hashed: that divides) only values with
+/// the same monomials, as normal forms equal up to sign have.
 fn same_up_to_sign(a: &Rat, b: &Rat) -> bool {
     same_monomials(a.num(), b.num())
         && same_monomials(a.den(), b.den())
@@ -105,9 +104,8 @@ pub fn eliminate(
     signs: &Assumptions,
     deadline: Option<Deadline>,
 ) -> Result<Elimination, NormError> {
-    // A constant multiple of one fact needs no elimination (and no side condition).
-    // Normal forms are canonical, so a nonzero constant multiple of a fact has its
-    // denominator and its numerator's monomials: only such facts are divided by.
+    // A constant multiple of one fact needs no elimination (and no side condition). Being
+    // canonical, it has the fact's denominator and monomials: only such facts are tried.
     let may_be_multiple = |f: &&Fact| {
         target.is_zero()
             || (target.den() == f.value.den() && same_monomials(target.num(), f.value.num()))
