@@ -248,9 +248,8 @@ pub fn parallel<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Ve
 /// prepares while any item is left, so no core waits for the others to finish
 /// preparing, and a heavy part starts as soon as it is known. `finish` is called with
 /// an item once its last part is done, on the thread that did that part (never for an
-/// item without parts). Returns each
-/// item prepared, with its parts' results in their order (`None` only for an item whose
-/// preparation did not return).
+/// item without parts). Returns each item prepared, with its parts' results in their
+/// order (`None` only for an item whose preparation did not return).
 pub fn staged<T: Sync, P: Send + Sync, R: Send>(
     items: &[T],
     size: impl Fn(&T) -> usize,
