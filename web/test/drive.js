@@ -80,15 +80,29 @@ function send(method, params = {}, sessionId) {
 
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 
+// Closes the browser, then removes its profile: asked to close, it stops its helper
+// processes and stops writing to the profile; one killed at once leaves helpers that
+// write to it after it has been removed (and a directory left in the temporary folder
+// on every run). A browser that does not close within two seconds is killed.
 function finish(code, message) {
   if (message) process.stderr.write(message + "\n");
+  const done = () => {
+    try {
+      fs.rmSync(profile, { recursive: true, force: true, maxRetries: 10, retryDelay: 50 });
+    } catch (e) {}
+    process.exit(code);
+  };
+  if (chrome.exitCode !== null || chrome.signalCode !== null) return done();
+  chrome.once("exit", () => setTimeout(done, 100));
   try {
-    chrome.kill("SIGKILL");
+    toChrome.write(JSON.stringify({ id: ++nextId, method: "Browser.close" }) + "\0");
   } catch (e) {}
-  try {
-    fs.rmSync(profile, { recursive: true, force: true });
-  } catch (e) {}
-  process.exit(code);
+  setTimeout(() => {
+    try {
+      chrome.kill("SIGKILL");
+    } catch (e) {}
+  }, 2000);
+  setTimeout(done, 4000);
 }
 
 const overall = timeoutMs * (args.includes("--examples") ? 20 : 1) + 10000;
