@@ -227,7 +227,7 @@ pub fn parallel<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Ve
                     break;
                 };
                 let r = f(item);
-                let mut all = results.lock().unwrap_or_else(|e| e.into_inner());
+                let mut all = lock(&results);
                 if let Some(slot) = all.get_mut(i) {
                     *slot = Some(r);
                 }
