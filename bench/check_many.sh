@@ -12,7 +12,8 @@
 #   bench/check_many.sh [RIGOR_BINARY] [FILES] [RUNS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bin="${1:-${CARGO_TARGET_DIR:-target}/release/rigor}"
+# The release build: target/<host triple>/release (see .cargo/config.toml).
+bin="${1:-${CARGO_TARGET_DIR:-target}/$(rustc -vV | sed -n 's/^host: //p')/release/rigor}"
 files="${2:-1000}"
 runs="${3:-5}"
 if [ ! -x /usr/bin/time ] || ! command -v taskset >/dev/null; then

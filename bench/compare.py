@@ -803,11 +803,13 @@ def ensure_venv():
 def build_rigor():
     print("building rigor (cargo build --release --benches) ...", file=sys.stderr)
     subprocess.check_call(["cargo", "build", "--release", "--benches", "--bins", "-q"], cwd=REPO)
-    target = os.environ.get("CARGO_TARGET_DIR") or os.path.join(REPO, "target")
-    cands = [p for p in glob.glob(os.path.join(target, "release", "deps", "cell-*"))
+    # Builds land in target/<host triple>/ (.cargo/config.toml names the host as the target).
+    host = re.search(r"^host: (\S+)$", subprocess.check_output(["rustc", "-vV"], text=True), re.M).group(1)
+    release = os.path.join(os.environ.get("CARGO_TARGET_DIR") or os.path.join(REPO, "target"), host, "release")
+    cands = [p for p in glob.glob(os.path.join(release, "deps", "cell-*"))
              if os.access(p, os.X_OK) and not p.endswith(".d")]
     cell = max(cands, key=os.path.getmtime)
-    return cell, os.path.join(target, "release", "rigor")
+    return cell, os.path.join(release, "rigor")
 
 
 def limit_child():

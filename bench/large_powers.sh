@@ -9,6 +9,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 runs="${1:-5}"
 cargo build --release --quiet
+# The release build: target/<host triple>/release (see .cargo/config.toml).
+bin="${CARGO_TARGET_DIR:-target}/$(rustc -vV | sed -n 's/^host: //p')/release/rigor"
 dir="$(mktemp -d)"
 trap 'rm -rf "$dir"' EXIT
 claims=(
@@ -24,7 +26,7 @@ for c in "${claims[@]}"; do
   times=()
   for ((r = 0; r < runs; r++)); do
     start=$(date +%s%N)
-    line=$(./target/release/rigor check "$dir/c.deriv" 2>/dev/null | tail -1 || true)
+    line=$("$bin" check "$dir/c.deriv" 2>/dev/null | tail -1 || true)
     end=$(date +%s%N)
     times+=("$(((end - start) / 1000000))")
   done

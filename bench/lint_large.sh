@@ -11,7 +11,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-5}
 notes=tests/lint/handout_notes.md
-bin=target/release/rigor
+bin=target/$(rustc -vV | sed -n 's/^host: //p')/release/rigor
 [ -x "$bin" ] || cargo build --release --quiet
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT

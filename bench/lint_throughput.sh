@@ -8,7 +8,8 @@
 #   bench/lint_throughput.sh [RIGOR_BINARY] [RUNS]     (default: the release build, 11)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bin="${1:-${CARGO_TARGET_DIR:-target}/release/rigor}"
+# The release build: target/<host triple>/release (see .cargo/config.toml).
+bin="${1:-${CARGO_TARGET_DIR:-target}/$(rustc -vV | sed -n 's/^host: //p')/release/rigor}"
 runs="${2:-11}"
 [ -x "$bin" ] || cargo build --release --quiet
 notes=(tests/lint/*.md tests/lint/*.tex tests/lint/corpus/*)

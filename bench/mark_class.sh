@@ -10,6 +10,8 @@ cd "$(dirname "$0")/.."
 n="${1:-1000}"
 runs="${2:-5}"
 cargo build --release --quiet
+# The release build: target/<host triple>/release (see .cargo/config.toml).
+bin="${CARGO_TARGET_DIR:-target}/$(rustc -vV | sed -n 's/^host: //p')/release/rigor"
 class="$(mktemp -d)"
 trap 'rm -rf "$class"' EXIT
 mapfile -t subs < <(ls tests/mark/class)
@@ -20,7 +22,7 @@ done
 times=()
 for ((r = 0; r < runs; r++)); do
   start=$(date +%s%N)
-  "${CARGO_TARGET_DIR:-target}/release/rigor" mark --reference tests/mark/reference.deriv "$class" --format csv >/dev/null
+  "$bin" mark --reference tests/mark/reference.deriv "$class" --format csv >/dev/null
   end=$(date +%s%N)
   ms=$(((end - start) / 1000000))
   times+=("$ms")

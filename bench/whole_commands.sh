@@ -8,7 +8,8 @@
 #   bench/whole_commands.sh [RIGOR_BINARY] [N] [RUNS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bin="${1:-${CARGO_TARGET_DIR:-target}/release/rigor}"
+# The release build: target/<host triple>/release (see .cargo/config.toml).
+bin="${1:-${CARGO_TARGET_DIR:-target}/$(rustc -vV | sed -n 's/^host: //p')/release/rigor}"
 n="${2:-16}"
 runs="${3:-11}"
 mass="int(int(int((1+x+y+z)^$n, x, 0, a), y, 0, b), z, 0, c)"

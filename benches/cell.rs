@@ -1,11 +1,13 @@
 //! One benchmark cell per process, following the protocol of WORKLOADS.md; driven by
 //! `bench/compare.py`. Usage (after `cargo build --release --benches`):
 //!
+//! (`<host>` is the host triple, e.g. `x86_64-unknown-linux-gnu`; see `.cargo/config.toml`)
+//!
 //! ```text
-//! target/release/deps/cell-<hash> W2 20
-//! target/release/deps/cell-<hash> W3.chain 6
-//! target/release/deps/cell-<hash> W1 1 | W1.check 1 | W4 1000
-//! target/release/deps/cell-<hash> W4.trace      (diagnostic: the slow W4 pairs)
+//! target/<host>/release/deps/cell-<hash> W2 20
+//! target/<host>/release/deps/cell-<hash> W3.chain 6
+//! target/<host>/release/deps/cell-<hash> W1 1 | W1.check 1 | W4 1000
+//! target/<host>/release/deps/cell-<hash> W4.trace      (diagnostic: the slow W4 pairs)
 //! ```
 //!
 //! Prints `{"event":"start"}` / `{"event":"end"}` heartbeats around each run (so the
