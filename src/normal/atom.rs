@@ -266,10 +266,7 @@ pub fn cmp_atoms(a: AtomId, b: AtomId) -> Ordering {
     }
     let (x, y) = (atom_ref(a), atom_ref(b));
     kind_rank(x).cmp(&kind_rank(y)).then_with(|| match (x, y) {
-        (Atom::Sym(p), Atom::Sym(q)) => p
-            .to_lowercase()
-            .cmp(&q.to_lowercase())
-            .then_with(|| p.cmp(q)),
+        (Atom::Sym(p), Atom::Sym(q)) => caseless(p, q).then_with(|| p.cmp(q)),
         (Atom::Moment(b1, e1), Atom::Moment(b2, e2)) => b1.cmp(b2).then_with(|| e1.cmp(e2)),
         _ => {
             let (p, q) = (super::print::atom_plain(x), super::print::atom_plain(y));
@@ -278,9 +275,40 @@ pub fn cmp_atoms(a: AtomId, b: AtomId) -> Ordering {
     })
 }
 
+/// `p.to_lowercase().cmp(&q.to_lowercase())`, without building the two strings when both
+/// names are ASCII (nearly every name; sorting atoms compares names often).
+fn caseless(p: &str, q: &str) -> Ordering {
+    if p.is_ascii() && q.is_ascii() {
+        p.bytes()
+            .map(|b| b.to_ascii_lowercase())
+            .cmp(q.bytes().map(|b| b.to_ascii_lowercase()))
+    } else {
+        p.to_lowercase().cmp(&q.to_lowercase())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn names_compare_as_their_lower_case_forms() {
+        // ASCII names take the short path; Greek ones (a final capital sigma lowers to ς,
+        // not σ, in a whole string) the long one. Both must agree with lower-casing.
+        let names = [
+            "a", "A", "ab", "aB", "Ab", "a_1", "A_1", "a1", "Z", "z", "_", "theta", "Theta",
+            "x_G", "x_g", "", "ΣF", "Σ", "AΣ", "aσ", "aς", "ω", "Ω", "é", "E",
+        ];
+        for p in names {
+            for q in names {
+                assert_eq!(
+                    caseless(p, q),
+                    p.to_lowercase().cmp(&q.to_lowercase()),
+                    "{p:?} against {q:?}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn slots_number_every_id_once_in_order() {
