@@ -352,7 +352,17 @@ impl Interval {
 
     /// `(lo + hi) / 2`.
     pub fn midpoint(&self) -> BigRational {
-        (&self.lo + &self.hi) / rat(2)
+        let (a, b) = (self.lo.numer(), self.lo.denom());
+        let (c, d) = (self.hi.numer(), self.hi.denom());
+        if let (Some(k), Some(l)) = (two_exponent(b), two_exponent(d)) {
+            // Dyadic endpoints (every rounded one): over the larger power of two, then
+            // halved; lowest terms by a shift, with no gcd.
+            let e = k.max(l);
+            let sum = (a << ((e - k) as usize)) + (c << ((e - l) as usize));
+            return dyadic(sum, -(e as i64) - 1);
+        }
+        // One gcd, where adding and then halving `Ratio`s takes several.
+        BigRational::new(a * d + c * b, b * d * 2)
     }
 
     /// Smallest interval containing both `self` and `other`.
@@ -936,6 +946,26 @@ mod tests {
         assert!(iv.width() < two_pow(-80), "too wide: {iv}");
     }
     const P: Prec = Prec { bits: 96 };
+
+    proptest! {
+        /// The midpoint is `(lo + hi) / 2` in lowest terms, whether the endpoints are
+        /// dyadic (the shift) or not (one gcd).
+        #[test]
+        fn midpoint_is_the_mean_in_lowest_terms(
+            a in -10_000i64..10_000, b in 1i64..5_000, c in -10_000i64..10_000,
+            d in 1i64..5_000, k in 0u32..70, l in 0u32..70, dyadic_ends in any::<bool>(),
+        ) {
+            let (lo, hi) = if dyadic_ends {
+                (q(a, 1) / two_pow(k.into()), q(c, 1) / two_pow(l.into()))
+            } else {
+                (q(a, b), q(c, d))
+            };
+            let (lo, hi) = if hi < lo { (hi, lo) } else { (lo, hi) };
+            let m = Interval::new(lo.clone(), hi.clone()).unwrap().midpoint();
+            let want = (&lo + &hi) / rat(2);
+            prop_assert_eq!((m.numer(), m.denom()), (want.numer(), want.denom()));
+        }
+    }
 
     #[test]
     fn known_values() {
