@@ -625,7 +625,7 @@ pub fn gcd(a: &Poly, b: &Poly) -> Result<Poly, Limit> {
     if b.is_zero() {
         return Ok(a.monic());
     }
-    if a.as_constant().is_some() || b.as_constant().is_some() {
+    if a.is_constant() || b.is_constant() {
         return Ok(Poly::one());
     }
     if a == b {
@@ -644,7 +644,7 @@ pub fn gcd(a: &Poly, b: &Poly) -> Result<Poly, Limit> {
 }
 
 fn gcd_nomono(a: &Poly, b: &Poly) -> Result<Poly, Limit> {
-    if a.as_constant().is_some() || b.as_constant().is_some() {
+    if a.is_constant() || b.is_constant() {
         return Ok(Poly::one());
     }
     if a.len() == 1 || b.len() == 1 {
@@ -752,22 +752,22 @@ pub fn squarefree(p: &Poly) -> Result<Vec<(Poly, u32)>, Limit> {
         |a: &Poly, b: &Poly| -> Result<Poly, Limit> { div_exact(a, b)?.ok_or(Limit::terms()) };
     let mut g = p.clone();
     for a in p.atoms() {
-        if g.as_constant().is_some() {
+        if g.is_constant() {
             break;
         }
         g = gcd(&g, &p.deriv_atom(a))?;
     }
-    if g.as_constant().is_some() {
+    if g.is_constant() {
         return Ok(vec![(p.primitive(), 1)]);
     }
     let mut w = exact(p, &g)?; // s₁ s₂ s₃ ⋯
     let mut y = g; // s₂ s₃² ⋯
     let mut out = Vec::new();
     let mut i = 1u32;
-    while w.as_constant().is_none() {
+    while !w.is_constant() {
         let z = gcd(&w, &y)?; // s_{i+1} s_{i+2} ⋯
         let s = exact(&w, &z)?;
-        if s.as_constant().is_none() {
+        if !s.is_constant() {
             out.push((s.primitive(), i));
         }
         y = exact(&y, &z)?;

@@ -133,7 +133,16 @@ impl Poly {
 
     /// Whether this is 1.
     pub fn is_one(&self) -> bool {
-        self.as_constant().is_some_and(|q| q.is_one())
+        matches!(self.terms.as_slice(), [(m, q)] if m.is_one() && q.is_one())
+    }
+
+    /// Whether this is a constant (zero included): [`Poly::as_constant`] without the copy.
+    pub fn is_constant(&self) -> bool {
+        match self.terms.as_slice() {
+            [] => true,
+            [(m, _)] => m.is_one(),
+            _ => false,
+        }
     }
 
     /// The value, if constant.
@@ -874,7 +883,30 @@ mod tests {
         })
     }
 
+    #[test]
+    fn constant_tests_agree_with_the_constant() {
+        let cases = [
+            Poly::zero(),
+            Poly::one(),
+            Poly::constant(Q::new(BigInt::from(2), BigInt::from(3))),
+            Poly::atom(AtomId::from_index(0)),
+            Poly::atom(AtomId::from_index(0)).add(&Poly::one()),
+        ];
+        let agree = |p: &Poly| {
+            assert_eq!(p.is_constant(), p.as_constant().is_some(), "{p:?}");
+            assert_eq!(p.is_one(), p.as_constant() == Some(Q::one()), "{p:?}");
+        };
+        cases.iter().for_each(agree);
+        assert!(cases[1].is_one() && cases[2].is_constant() && !cases[3].is_constant());
+    }
+
     proptest! {
+        #[test]
+        fn constant_tests_agree_on_any_poly(p in any_poly()) {
+            prop_assert_eq!(p.is_constant(), p.as_constant().is_some());
+            prop_assert_eq!(p.is_one(), p.as_constant() == Some(Q::one()));
+        }
+
         /// The packed power is the product of k copies, term for term.
         #[test]
         fn packed_power_is_repeated_product(p in any_poly(), k in 1u64..7) {
