@@ -213,7 +213,7 @@ fn decide_with(
             .atoms()
             .into_iter()
             .filter(|x| !independent_atom(*x))
-            .map(|x| crate::normal::print::atom_plain(&atom::get(x)))
+            .map(|x| crate::normal::print::atom_plain(atom::get(x)))
             .collect();
         return Verdict::Undecided {
             why: format!(
@@ -249,7 +249,7 @@ pub fn zero_where_defined(d: &Rat, s: &Assumptions, defined: &[(Rat, Need)]) -> 
     let has_ln = |r: &Rat| {
         r.atoms()
             .into_iter()
-            .any(|a| matches!(&*atom::get(a), Atom::Ln(_)))
+            .any(|a| matches!(atom::get(a), Atom::Ln(_)))
     };
     if d.is_zero() || !has_ln(d) {
         return d.is_zero();
@@ -267,7 +267,7 @@ pub fn zero_where_defined(d: &Rat, s: &Assumptions, defined: &[(Rat, Need)]) -> 
             continue;
         };
         for a in l.atoms() {
-            if matches!(&*atom::get(a), Atom::Ln(_)) {
+            if matches!(atom::get(a), Atom::Ln(_)) {
                 covered.push((a, k.clone()));
             }
         }
@@ -301,7 +301,7 @@ fn coprime_radicals(d: &Rat) -> Option<Rat> {
     let roots: Vec<(AtomId, BigInt)> = d
         .atoms()
         .into_iter()
-        .filter_map(|a| match &*atom::get(a) {
+        .filter_map(|a| match atom::get(a) {
             Atom::Sqrt(p) => p
                 .as_constant()
                 .filter(|q| q.is_integer() && q.numer() > &BigInt::one())
@@ -363,7 +363,7 @@ fn coprime_radicals(d: &Rat) -> Option<Rat> {
 
 /// Atoms that satisfy no algebraic relation rigor does not already apply.
 fn independent_atom(a: AtomId) -> bool {
-    match &*atom::get(a) {
+    match atom::get(a) {
         Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => true,
         // An instant holding a kept factor is not in canonical form.
         Atom::At(_, u) => !crate::normal::power::has_kept(u),
@@ -540,7 +540,7 @@ fn about_inertia(r: &Rat) -> bool {
     named
         || r.atoms().iter().any(|a| {
             matches!(
-                &*crate::normal::atom::get(*a),
+                crate::normal::atom::get(*a),
                 crate::normal::Atom::Moment(..)
             )
         })
@@ -594,7 +594,7 @@ fn symbols_in_poly(p: &Poly, out: &mut Vec<AtomId>) {
 }
 
 fn symbols_in_atom(a: AtomId, out: &mut Vec<AtomId>) {
-    match &*atom::get(a) {
+    match atom::get(a) {
         Atom::Sym(_) => {
             if !out.contains(&a) {
                 out.push(a)
@@ -903,7 +903,7 @@ impl<'a> Evaluator<'a> {
 
     fn atom_uncached(&mut self, a: AtomId) -> Option<Interval> {
         let p = self.prec;
-        match &*atom::get(a) {
+        match atom::get(a) {
             Atom::Sym(_) | Atom::At(..) => self.point.get(&a).map(|q| Interval::point(q.clone())),
             Atom::Pi => Interval::pi(p),
             Atom::Sqrt(x) => self.poly(x)?.sqrt(p),

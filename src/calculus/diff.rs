@@ -78,7 +78,7 @@ fn diff_atom_uncached(
         return Ok(Rat::one());
     }
     let at = atom::get(a);
-    if let Atom::Sym(name) = &*at {
+    if let Atom::Sym(name) = at {
         if let Some(is_time) = w.time {
             let base = name.trim_end_matches('\'');
             if is_time(base) {
@@ -91,7 +91,7 @@ fn diff_atom_uncached(
         return Ok(Rat::zero());
     }
     let two = Q::from_integer(2.into());
-    Ok(match &*at {
+    Ok(match at {
         Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => Rat::zero(),
         // d/dv x(u) = x'(u) · du/dv
         Atom::At(name, u) => {

@@ -151,14 +151,14 @@ fn integrate_special(
     let half = Q::new(BigInt::one(), BigInt::from(2));
     for &(a, e) in dep {
         let at = atom::get(a);
-        let (kind, u) = match &*at {
+        let (kind, u) = match at {
             Atom::Sin(u) => (Kind::Sin, u.clone()),
             Atom::Cos(u) => (Kind::Cos, u.clone()),
             Atom::Exp(u) => (Kind::Exp, u.clone()),
             _ => {
                 return Err(IntError::Unsupported(format!(
                     "the integrand contains {} of {name}",
-                    crate::normal::print::atom_plain(&at)
+                    crate::normal::print::atom_plain(at)
                 )))
             }
         };

@@ -14,12 +14,12 @@ type Factor = (AtomId, u32);
 
 /// Whether atom `a` is a `time` symbol (or a derivative of one) or contains one.
 fn time_dependent(a: AtomId, is_time: &dyn Fn(&str) -> bool) -> bool {
-    match &*atom::get(a) {
+    match atom::get(a) {
         Atom::Sym(n) => is_time(n.trim_end_matches('\'')),
         _ => {
             let mut found = false;
             for b in crate::normal::subst::atoms_within(a) {
-                if let Atom::Sym(n) = &*atom::get(b) {
+                if let Atom::Sym(n) = atom::get(b) {
                     found |= is_time(n.trim_end_matches('\''));
                 }
             }
@@ -41,7 +41,7 @@ pub fn at_instant(
         if a == t {
             return Some(v.clone());
         }
-        match &*atom::get(a) {
+        match atom::get(a) {
             Atom::Sym(n) if is_time(n.trim_end_matches('\'')) => Some(Rat::atom(atom::at(n, v))),
             _ => None,
         }
@@ -105,7 +105,7 @@ pub fn time_antiderivative(
 /// The antiderivative of a product of time symbols of the form `x^(k+1)` or
 /// `(x^(k))^n · x^(k+1)` (one symbol, consecutive derivatives).
 fn primitive_of(timed: &[(AtomId, u32)]) -> Option<Rat> {
-    let name = |a: AtomId| match &*atom::get(a) {
+    let name = |a: AtomId| match atom::get(a) {
         Atom::Sym(n) => Some(n.clone()),
         _ => None,
     };

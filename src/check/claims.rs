@@ -840,7 +840,7 @@ fn quantities_of_atom(a: AtomId, out: &mut Vec<String>) {
             out.push(q);
         }
     };
-    match &*atom::get(a) {
+    match atom::get(a) {
         Atom::Sym(s) => push(s.trim_end_matches('\'').to_string()),
         Atom::At(s, u) => {
             push(s.trim_end_matches('\'').to_string());

@@ -145,7 +145,7 @@ fn mentions(r: &Rat, of: &str) -> bool {
     crate::decide::symbols_in(r, &mut syms);
     syms.iter().any(|a| is_of(*a, of).is_some())
         || syms.iter().any(
-            |a| matches!(&*atom::get(*a), atom::Atom::At(s, _) if s.trim_end_matches('\'') == of),
+            |a| matches!(atom::get(*a), atom::Atom::At(s, _) if s.trim_end_matches('\'') == of),
         )
 }
 

@@ -532,7 +532,7 @@ fn unknowns_within(r: &Rat, is_unknown: &dyn Fn(AtomId) -> bool, out: &mut Vec<A
             out.push(a);
             continue;
         }
-        match &*atom::get(a) {
+        match atom::get(a) {
             Atom::Sym(_) | Atom::Pi | Atom::Moment(..) | Atom::At(..) => {}
             Atom::Sqrt(p) | Atom::Root(p, _) | Atom::Abs(p) | Atom::Factor(p) => poly(p, out),
             Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) => {
@@ -931,7 +931,7 @@ pub fn constrained_atoms(
         found.extend(
             f.atoms()
                 .into_iter()
-                .filter(|a| matches!(&*atom::get(*a), crate::normal::Atom::Moment(..))),
+                .filter(|a| matches!(atom::get(*a), crate::normal::Atom::Moment(..))),
         );
         for a in found {
             if !out.contains(&a) {
@@ -995,5 +995,5 @@ pub fn apply_steps(r: &Rat, steps: &[Step], signs: &Assumptions) -> Result<Rat, 
 
 /// `q` as text (helper for messages).
 pub fn unknown_name(a: AtomId) -> String {
-    atom::sym_name(a).unwrap_or_else(|| crate::normal::print::atom_plain(&atom::get(a)))
+    atom::sym_name(a).unwrap_or_else(|| crate::normal::print::atom_plain(atom::get(a)))
 }

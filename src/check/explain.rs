@@ -112,7 +112,7 @@ impl Checker<'_, '_> {
         let (target, _, left) = with_params;
         // Moments of an abstract body are solved for whenever that shows a step (they
         // cannot be declared): it did not show this one.
-        let moment = |a: &AtomId| matches!(&*atom::get(*a), crate::normal::Atom::Moment(..));
+        let moment = |a: &AtomId| matches!(atom::get(*a), crate::normal::Atom::Moment(..));
         if tied.iter().all(moment) {
             return Err(not_verified(
                 tied_headline(&tied, &left),
@@ -606,7 +606,7 @@ fn atom_names(atoms: &[AtomId]) -> String {
     listed(
         atoms
             .iter()
-            .map(|a| crate::normal::print::atom_plain(&atom::get(*a)))
+            .map(|a| crate::normal::print::atom_plain(atom::get(*a)))
             .collect(),
     )
 }
@@ -668,7 +668,7 @@ fn tied_atoms(
         target
             .atoms()
             .into_iter()
-            .filter(|a| matches!(&*atom::get(*a), crate::normal::Atom::Moment(..))),
+            .filter(|a| matches!(atom::get(*a), crate::normal::Atom::Moment(..))),
     );
     mine.into_iter()
         .filter(|a| constrained.contains(a) && !is_unknown(*a))

@@ -470,12 +470,7 @@ fn moments_solved(
     signs: &crate::normal::Assumptions,
     deadline: Option<crate::clock::Deadline>,
 ) -> super::elimination::Elimination {
-    let moment = |a: AtomId| {
-        matches!(
-            &*crate::normal::atom::get(a),
-            crate::normal::Atom::Moment(..)
-        )
-    };
+    let moment = |a: AtomId| matches!(crate::normal::atom::get(a), crate::normal::Atom::Moment(..));
     if e.target.is_zero()
         || e.timed_out
         || !facts

@@ -730,7 +730,7 @@ impl<'l, 'o> Checker<'l, 'o> {
 /// Whether atom `a` is an unknown: declared so, a `time` symbol or derivative, or one of
 /// those at an instant (`x'(T)`).
 pub(super) fn unknown_atom(scope: &Scope, a: AtomId) -> bool {
-    match &*atom::get(a) {
+    match atom::get(a) {
         crate::normal::Atom::Sym(n) => scope.is_unknown(n),
         crate::normal::Atom::At(n, _) => scope.is_unknown(n),
         _ => false,

@@ -61,9 +61,9 @@ enum Kind {
 fn kind(a: AtomId) -> Option<Kind> {
     let angle = |u: &Rat| {
         let x = u.as_atom()?;
-        matches!(&*atom::get(x), Atom::Sym(_)).then_some(x)
+        matches!(atom::get(x), Atom::Sym(_)).then_some(x)
     };
-    match &*atom::get(a) {
+    match atom::get(a) {
         Atom::Sym(_) => Some(Kind::Symbol),
         Atom::Sin(u) => Some(Kind::Trig(angle(u)?, false)),
         Atom::Cos(u) => Some(Kind::Trig(angle(u)?, true)),

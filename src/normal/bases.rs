@@ -69,7 +69,7 @@ fn powers(r: &Rat) -> Vec<Power> {
     r.atoms()
         .into_iter()
         .filter_map(|a| {
-            let (p, n) = match &*atom::get(a) {
+            let (p, n) = match atom::get(a) {
                 Atom::Sqrt(p) => (p.clone(), 2),
                 Atom::Root(p, n) => (p.clone(), *n),
                 _ => return None,

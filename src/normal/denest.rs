@@ -72,11 +72,11 @@ fn nested(u: &Rat, s: &Assumptions, budget: &mut u32) -> Option<Rat> {
     let roots: Vec<AtomId> = atoms
         .iter()
         .copied()
-        .filter(|a| atom::depth(*a) == top && matches!(&*atom::get(*a), Atom::Sqrt(_)))
+        .filter(|a| atom::depth(*a) == top && matches!(atom::get(*a), Atom::Sqrt(_)))
         .take(CANDIDATES)
         .collect();
     for x in roots {
-        let Atom::Sqrt(c) = &*atom::get(x) else {
+        let Atom::Sqrt(c) = atom::get(x) else {
             continue;
         };
         let coeffs = p.coeffs_in(x);
@@ -191,7 +191,7 @@ fn two_terms(u: &Rat, s: &Assumptions) -> Result<Option<Rat>, NormError> {
     let mut c = BigInt::one();
     for &(x, e) in m1.pairs() {
         let at = atom::get(x);
-        let Atom::Sqrt(p) = &*at else {
+        let Atom::Sqrt(p) = at else {
             return Ok(None);
         };
         match p.as_constant() {

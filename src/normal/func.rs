@@ -234,7 +234,7 @@ fn part_root(
 /// product splits off the factors the signs show nonnegative (`sqrt(a b) = sqrt(a)
 /// sqrt(b)` for `a, b >= 0`). `None`: it stays inside the radicand.
 fn split_root(a: atom::AtomId, e: u32, n: u32, s: &Assumptions) -> Result<Option<Rat>, NormError> {
-    let inner = match &*atom::get(a) {
+    let inner = match atom::get(a) {
         Atom::Sqrt(p) => Some((p.clone(), 2)),
         Atom::Root(p, m) => Some((p.clone(), *m)),
         // exp(u)^(e/n) = exp(e u/n): exp is positive.
@@ -285,7 +285,7 @@ pub(super) fn one_minus_sin_squared(p: &Poly) -> Option<Rat> {
         ([], [(a, 2)]) if c2 == &-Q::one() && c1.is_one() => *a,
         _ => return None,
     };
-    match &*atom::get(sq) {
+    match atom::get(sq) {
         Atom::Sin(u) => Some(u.clone()),
         _ => None,
     }
@@ -428,7 +428,7 @@ pub fn exp(u: &Rat) -> Result<Rat, NormError> {
         let mut rest = Vec::new();
         for (m, q) in u.num().terms() {
             let ln_of = match m.pairs() {
-                [(a, 1)] => match &*atom::get(*a) {
+                [(a, 1)] => match atom::get(*a) {
                     Atom::Ln(v) => Some(v.clone()),
                     _ => None,
                 },
@@ -551,11 +551,8 @@ pub fn ln(u: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
     let v = Rat::new(num, den)?;
     if v != Rat::one() {
         let l = match v.as_atom().map(atom::get) {
-            Some(a) => match &*a {
-                Atom::Exp(w) => w.clone(),
-                _ => Rat::atom(atom::intern(Atom::Ln(v))),
-            },
-            None => Rat::atom(atom::intern(Atom::Ln(v))),
+            Some(Atom::Exp(w)) => w.clone(),
+            _ => Rat::atom(atom::intern(Atom::Ln(v))),
         };
         out = out.add(&l)?;
     }
@@ -566,12 +563,12 @@ pub fn ln(u: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
 /// signs show `v > 0`, `ln(-v)` where `v < 0`, otherwise `ln(abs(v))`; `ln(exp(w)) = w`.
 fn ln_abs(v: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
     if let Some(a) = v.as_atom() {
-        match &*atom::get(a) {
+        match atom::get(a) {
             Atom::Exp(w) => return Ok(w.clone()),
             // |p^(1/n)| = |p|^(1/n) for the principal root (real: p ≥ 0 for even n), so
             // ln|p^(1/n)| = ln|p|/n wherever the root is not zero.
             Atom::Sqrt(p) | Atom::Root(p, _) => {
-                let n = match &*atom::get(a) {
+                let n = match atom::get(a) {
                     Atom::Root(_, n) => i64::from(*n),
                     _ => 2,
                 };

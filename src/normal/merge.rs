@@ -43,7 +43,7 @@ enum Part {
 }
 
 fn part(a: AtomId, e: u32, s: &Assumptions) -> Option<Part> {
-    let (p, n) = match &*atom::get(a) {
+    let (p, n) = match atom::get(a) {
         Atom::Abs(p) => return Some(Part::Abs(p.pow(u64::from(e)).ok()?)),
         Atom::Sqrt(p) => (p.clone(), 2),
         Atom::Root(p, n) => (p.clone(), *n),
@@ -71,7 +71,7 @@ fn number_sign(p: &Poly) -> Option<super::Q> {
     for (m, q) in p.terms() {
         match m.pairs() {
             [] => a = q.clone(),
-            [(x, 1)] => match &*atom::get(*x) {
+            [(x, 1)] => match atom::get(*x) {
                 Atom::Sqrt(r) if c.is_none() => {
                     c = Some(r.as_constant().filter(|v| v.is_positive())?);
                     b = q.clone();
@@ -178,7 +178,7 @@ pub fn merged_logs_with(
         let lns: Vec<(AtomId, u32, Rat)> = m
             .pairs()
             .iter()
-            .filter_map(|&(a, e)| match &*atom::get(a) {
+            .filter_map(|&(a, e)| match atom::get(a) {
                 Atom::Ln(u) => Some((a, e, u.clone())),
                 _ => None,
             })
@@ -267,7 +267,7 @@ pub fn positive_where(u: &Rat, s: &Assumptions) -> Option<Poly> {
             if e % 2 == 0 {
                 return None;
             }
-            let f = match &*atom::get(a) {
+            let f = match atom::get(a) {
                 Atom::Sqrt(q) | Atom::Root(q, _) => q.clone(),
                 Atom::Abs(_) => return None,
                 _ => Poly::atom(a),

@@ -45,7 +45,7 @@ pub fn settle(d: &Rat, s: &Assumptions) -> Rat {
     // Symbols alone: the form is canonical, nothing to look at again (the bulk case).
     let plain = |a: AtomId| {
         matches!(
-            &*atom::get(a),
+            atom::get(a),
             Atom::Sym(_) | Atom::Pi | Atom::Moment(..) | Atom::At(..)
         )
     };

@@ -56,7 +56,7 @@ fn constant_atom(a: AtomId) -> bool {
         r.num().atoms().into_iter().all(constant_atom)
             && r.den().atoms().into_iter().all(constant_atom)
     };
-    match &*atom::get(a) {
+    match atom::get(a) {
         Atom::Pi => true,
         Atom::Sqrt(p) | Atom::Root(p, _) | Atom::Abs(p) => p.atoms().into_iter().all(constant_atom),
         Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) => rat(u),
@@ -96,7 +96,7 @@ impl Enclosure {
             return v.clone();
         }
         let p = self.prec;
-        let v = match &*atom::get(a) {
+        let v = match atom::get(a) {
             Atom::Pi => Interval::pi(p),
             Atom::Sqrt(x) => self.poly(x)?.sqrt(p),
             Atom::Root(x, n) => self.poly(x)?.real_root(*n, p),

@@ -83,7 +83,7 @@ pub fn has_kept(r: &Rat) -> bool {
     r.atoms().into_iter().any(|a| {
         std::iter::once(a)
             .chain(super::subst::atoms_within(a))
-            .any(|b| matches!(&*atom::get(b), Atom::Factor(_)))
+            .any(|b| matches!(atom::get(b), Atom::Factor(_)))
     })
 }
 
@@ -124,7 +124,7 @@ fn vanishes(d: &Rat, s: &Assumptions) -> bool {
     let kept: Vec<(AtomId, u32)> = common
         .pairs()
         .iter()
-        .filter(|(a, _)| matches!(&*atom::get(*a), Atom::Factor(_)))
+        .filter(|(a, _)| matches!(atom::get(*a), Atom::Factor(_)))
         .copied()
         .collect();
     let rest = match super::mono::Mono::from_pairs(kept) {
@@ -144,7 +144,7 @@ fn coprime(r: &Rat, s: &Assumptions) -> Option<Rat> {
     let kept: Vec<(AtomId, Poly)> = r
         .atoms()
         .into_iter()
-        .filter_map(|a| match &*atom::get(a) {
+        .filter_map(|a| match atom::get(a) {
             Atom::Factor(p) => Some((a, p.clone())),
             _ => None,
         })
@@ -229,7 +229,7 @@ fn cost(r: &Rat) -> u64 {
     scan(r.den());
     for a in r.atoms() {
         for b in std::iter::once(a).chain(super::subst::atoms_within(a)) {
-            match &*atom::get(b) {
+            match atom::get(b) {
                 Atom::Sqrt(p) | Atom::Root(p, _) | Atom::Abs(p) | Atom::Factor(p) => scan(p),
                 Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) | Atom::At(_, u) => {
                     scan(u.num());
@@ -246,7 +246,7 @@ fn cost(r: &Rat) -> u64 {
         }
     }
     top.into_iter()
-        .filter_map(|(a, e)| match &*atom::get(a) {
+        .filter_map(|(a, e)| match atom::get(a) {
             Atom::Factor(p) => Some(multinomial(p.len() as u64, e).saturating_mul(u64::from(e))),
             _ => None,
         })
@@ -273,7 +273,7 @@ pub fn expand(r: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
         return Ok(r.clone());
     }
     // A kept factor's sum may hold kept factors of its own: expand those too.
-    let map = |a: AtomId| match &*atom::get(a) {
+    let map = |a: AtomId| match atom::get(a) {
         Atom::Factor(p) => Rat::poly(p.clone()).and_then(|v| expand(&v, s)).ok(),
         _ => None,
     };

@@ -51,7 +51,7 @@ fn has_square_root(r: &Rat) -> bool {
 
 /// The radicand of a square root atom.
 fn radicand(a: AtomId) -> Option<Poly> {
-    match &*get(a) {
+    match get(a) {
         Atom::Sqrt(p) => Some(p.clone()),
         _ => None,
     }

@@ -198,7 +198,7 @@ fn oriented_factors(p: &Poly) -> Cow<'_, Poly> {
     let flips: Vec<AtomId> = p
         .atoms()
         .into_iter()
-        .filter(|a| matches!(&*get(*a), Atom::Factor(s) if reads_negated(s)))
+        .filter(|a| matches!(get(*a), Atom::Factor(s) if reads_negated(s)))
         .collect();
     if flips.is_empty() {
         return Cow::Borrowed(p);
@@ -265,7 +265,7 @@ fn term(m: &Mono, q: &Q, style: Style) -> String {
 
 /// What printing a factor needs of its atom, made once per polynomial.
 struct AtomPrint {
-    atom: std::sync::Arc<Atom>,
+    atom: &'static Atom,
     /// A square root of a whole number below 10 000: merged with the term's other such
     /// roots (to the first power) into one, which the parser splits back into the same primes.
     radicand: Option<BigInt>,
@@ -276,7 +276,7 @@ struct AtomPrint {
 impl AtomPrint {
     fn new(a: AtomId) -> AtomPrint {
         let atom = get(a);
-        let radicand = match &*atom {
+        let radicand = match atom {
             Atom::Sqrt(p) => p
                 .as_constant()
                 .filter(|c| c.is_integer() && c.to_integer() < BigInt::from(10_000))
@@ -291,7 +291,7 @@ impl AtomPrint {
     }
 
     fn text(&self, style: Style) -> &str {
-        self.text[style as usize].get_or_init(|| atom_text(&self.atom, style))
+        self.text[style as usize].get_or_init(|| atom_text(self.atom, style))
     }
 }
 
@@ -358,7 +358,7 @@ fn write_term<'a>(
 
 /// One factor `atom^e` of a term.
 fn write_factor(out: &mut String, info: &AtomPrint, e: u32, style: Style) {
-    if let (Atom::Root(p, n), true) = (&*info.atom, e > 1) {
+    if let (Atom::Root(p, n), true) = (info.atom, e > 1) {
         // A power of a root as one fractional power: (z)^(2/3), \sqrt[3]{z^{2}}.
         let _ = match style {
             Style::Plain => write!(out, "({})^({e}/{n})", poly(p, style)),
@@ -379,7 +379,7 @@ fn write_factor(out: &mut String, info: &AtomPrint, e: u32, style: Style) {
         return;
     }
     let parens;
-    let base = if needs_parens_for_power(&info.atom) {
+    let base = if needs_parens_for_power(info.atom) {
         parens = paren(base, style);
         parens.as_str()
     } else {

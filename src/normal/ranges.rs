@@ -21,7 +21,7 @@ fn pi_form(r: &Rat) -> Option<(Q, Q)> {
     for (m, c) in r.num().terms() {
         match m.pairs() {
             [] => p = c.clone(),
-            [(a, 1)] if matches!(&*atom::get(*a), Atom::Pi) => q = c.clone(),
+            [(a, 1)] if matches!(atom::get(*a), Atom::Pi) => q = c.clone(),
             _ => return None,
         }
     }
@@ -38,7 +38,7 @@ fn linear(u: &Rat) -> Option<(AtomId, Q, Q, Q)> {
     for (m, k) in u.num().terms() {
         match m.pairs() {
             [] => p = k.clone(),
-            [(a, 1)] if matches!(&*atom::get(*a), Atom::Pi) => q = k.clone(),
+            [(a, 1)] if matches!(atom::get(*a), Atom::Pi) => q = k.clone(),
             [(a, 1)] if atom::sym_name(*a).is_some() && sym.is_none() => {
                 sym = Some(*a);
                 c = k.clone();

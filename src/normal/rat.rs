@@ -289,7 +289,7 @@ impl Rat {
         atoms: &[super::atom::AtomId],
     ) -> Option<Rat> {
         use super::atom::{self, Atom};
-        let symbol = |id| matches!(&*atom::get(id), Atom::Sym(_));
+        let symbol = |id| matches!(atom::get(id), Atom::Sym(_));
         if !symbol(x) || !symbol(a) {
             return None;
         }

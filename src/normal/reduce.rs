@@ -13,7 +13,7 @@ use num_traits::One;
 
 /// The value `a^n` reduces to for an atom with rule `Power(n)`.
 fn power_value(a: AtomId) -> Option<Poly> {
-    match &*atom::get(a) {
+    match atom::get(a) {
         Atom::Sqrt(p) | Atom::Root(p, _) => Some(p.clone()),
         Atom::Abs(p) => p.mul(p).ok(),
         Atom::Cos(u) => {
@@ -89,7 +89,7 @@ fn reduce_once(p: &Poly) -> Result<Option<Poly>, NormError> {
                     }
                 }
                 Rule::Exp => {
-                    if let Atom::Exp(u) = &*atom::get(a) {
+                    if let Atom::Exp(u) = atom::get(a) {
                         let term = u.scale(&Q::from_integer(e.into()));
                         exp_arg = Some(match exp_arg {
                             None => term,
@@ -120,7 +120,7 @@ pub fn rationalise(num: Poly, den: Poly) -> Result<(Poly, Poly), NormError> {
         let radical = ids
             .iter()
             .copied()
-            .filter(|a| matches!(&*atom::get(*a), Atom::Sqrt(_)))
+            .filter(|a| matches!(atom::get(*a), Atom::Sqrt(_)))
             .max_by_key(|a| (atom::depth(*a), *a));
         let Some(s) = radical else {
             break;
@@ -153,7 +153,7 @@ fn move_exps(num: Poly, den: Poly) -> Result<(Poly, Poly), NormError> {
     let mut moved = Vec::new();
     let mut arg: Option<Rat> = None;
     for &(a, e) in mc.pairs() {
-        if let Atom::Exp(u) = &*atom::get(a) {
+        if let Atom::Exp(u) = atom::get(a) {
             moved.push((a, e));
             let t = u.scale(&-Q::from_integer(e.into()));
             arg = Some(match arg {

@@ -220,7 +220,7 @@ impl Ctx<'_> {
         }
         let at = atom::get(a);
         let fact = |k: usize| -> Q { (1..=k).fold(Q::one(), |f, i| f * q(i as i64, 1)) };
-        match &*at {
+        match at {
             Atom::Sin(u) | Atom::Cos(u) => {
                 let whole = self.rat(u)?;
                 let (u0, d) = self.split(&whole);
@@ -240,7 +240,7 @@ impl Ctx<'_> {
                     .collect();
                 let (cd, sd) = (self.compose(&cos_c, &d)?, self.compose(&sin_c, &d)?);
                 let (s0, c0) = (trig::sin(&u0)?, trig::cos(&u0)?);
-                if matches!(&*at, Atom::Sin(_)) {
+                if matches!(at, Atom::Sin(_)) {
                     self.add(&self.scale(&cd, &s0)?, &self.scale(&sd, &c0)?)
                 } else {
                     self.add(&self.scale(&cd, &c0)?, &self.scale(&sd, &s0.neg())?)
@@ -290,7 +290,7 @@ impl Ctx<'_> {
                 let ex = func::exp(&arg)?;
                 self.rat(&ex)
             }
-            _ => Err(SeriesError::NotAnalytic(super::print::atom_plain(&at))),
+            _ => Err(SeriesError::NotAnalytic(super::print::atom_plain(at))),
         }
     }
 

@@ -151,7 +151,7 @@ impl Assumptions {
 
     /// The sign of an atom.
     pub fn atom(&self, a: AtomId) -> Sign {
-        match &*atom::get(a) {
+        match atom::get(a) {
             Atom::Sym(_) => self.declared(a),
             Atom::Pi | Atom::Exp(_) => Sign::Pos,
             Atom::Factor(p) => self.poly(p),

@@ -44,7 +44,7 @@ impl<'a> Subst<'a> {
     fn rebuild(&mut self, a: AtomId) -> Result<Option<Rat>, NormError> {
         let at = atom::get(a);
         let s = self.signs;
-        Ok(match &*at {
+        Ok(match at {
             Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => None,
             Atom::At(name, u) => self.rat_changed(u)?.map(|v| Rat::atom(atom::at(name, &v))),
             Atom::Sqrt(p) => self
@@ -308,7 +308,7 @@ pub fn atom_depends_on(a: AtomId, x: AtomId) -> bool {
     let at = atom::get(a);
     let p = |p: &Poly| p.atoms().iter().any(|b| atom_depends_on(*b, x));
     let r = |r: &Rat| depends_on(r, x);
-    match &*at {
+    match at {
         Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => false,
         Atom::Sqrt(q) | Atom::Root(q, _) | Atom::Abs(q) | Atom::Factor(q) => p(q),
         Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) => r(u),
@@ -328,7 +328,7 @@ pub fn atoms_within(a: AtomId) -> Vec<AtomId> {
                 todo.push(x);
             }
         };
-        match &*at {
+        match at {
             Atom::Sym(_) | Atom::Pi | Atom::Moment(..) => {}
             Atom::Sqrt(q) | Atom::Root(q, _) | Atom::Abs(q) | Atom::Factor(q) => {
                 todo.extend(q.atoms())

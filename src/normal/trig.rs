@@ -288,7 +288,7 @@ pub fn rebase(r: &Rat, s: &super::sign::Assumptions) -> Result<Rat, NormError> {
     let mut groups: HashMap<Mono, Vec<(super::atom::AtomId, bool, Q)>> = HashMap::new();
     for a in r.atoms() {
         let at = atom::get(a);
-        let (is_sin, u) = match &*at {
+        let (is_sin, u) = match at {
             Atom::Sin(u) => (true, u),
             Atom::Cos(u) => (false, u),
             _ => continue,
