@@ -180,7 +180,20 @@ pub fn intern(a: Atom) -> AtomId {
 
 /// The symbol named `name`.
 pub fn sym(name: &str) -> AtomId {
-    intern(Atom::Sym(name.to_string()))
+    // Symbols are looked up by name over and over (every evaluation point names its
+    // symbols). Ids never change, so each thread remembers the ones it has seen and
+    // leaves the shared table's lock, and a copy of the name, to the first lookup.
+    thread_local! {
+        static SEEN: std::cell::RefCell<HashMap<String, AtomId>> = Default::default();
+    }
+    SEEN.with(|seen| {
+        if let Some(id) = seen.borrow().get(name) {
+            return *id;
+        }
+        let id = intern(Atom::Sym(name.to_string()));
+        seen.borrow_mut().insert(name.to_string(), id);
+        id
+    })
 }
 
 /// The `time` symbol (or derivative) `name` at the instant `u`: `x'` itself when `u` is
@@ -287,6 +300,18 @@ fn caseless(p: &str, q: &str) -> Ordering {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_symbol_has_one_id_however_it_is_looked_up() {
+        let names = ["sym_test_a", "sym_test_b", "sym_test_a'"];
+        let first: Vec<AtomId> = names.iter().map(|n| sym(n)).collect();
+        for (n, id) in names.iter().zip(&first) {
+            assert_eq!(sym(n), *id, "{n} again");
+            assert_eq!(intern(Atom::Sym(n.to_string())), *id, "{n} interned");
+            assert_eq!(sym_str(*id), Some(*n));
+        }
+        assert!(first[0] != first[1] && first[0] != first[2]);
+    }
 
     #[test]
     fn names_compare_as_their_lower_case_forms() {
