@@ -368,16 +368,18 @@ impl Point {
 /// the same notes. A point is a point whatever the size limits; a point not found under
 /// tight limits only sends the questions to the elimination.
 pub fn remembered(facts: &[Fact], signs: &Assumptions) -> Option<Arc<Point>> {
-    type Known = Vec<(Vec<Rat>, Assumptions, Option<Arc<Point>>)>;
-    static KNOWN: Mutex<Known> = Mutex::new(Vec::new());
+    type Entry = Arc<(Vec<Rat>, Assumptions, Option<Arc<Point>>)>;
+    static KNOWN: Mutex<Vec<Entry>> = Mutex::new(Vec::new());
     const KEEP: usize = 32;
     let lock = || KNOWN.lock().unwrap_or_else(|e| e.into_inner());
-    let same = |(v, s, _): &(Vec<Rat>, Assumptions, Option<Arc<Point>>)| {
+    let same = |e: &Entry| {
+        let (v, s, _) = &**e;
         v.len() == facts.len() && v.iter().zip(facts).all(|(a, f)| *a == f.value) && s == signs
     };
     // A point of other facts under the same signs at which these facts hold too: the
     // facts grow a given or a verified claim at a time, and a link uses some of them.
-    let holds = |(v, s, p): &(Vec<Rat>, Assumptions, Option<Arc<Point>>)| {
+    let holds = |e: &Entry| {
+        let (v, s, p) = &**e;
         let p = p.as_ref()?;
         let new: Vec<&Fact> = facts.iter().filter(|f| !v.contains(&f.value)).collect();
         if new.len() > 2 || s != signs {
@@ -386,23 +388,22 @@ pub fn remembered(facts: &[Fact], signs: &Assumptions) -> Option<Arc<Point>> {
         let zero = |f: &&Fact| eval(&f.value, &p.values, signs).is_some_and(|c| c.is_zero());
         new.iter().all(zero).then(|| p.clone())
     };
-    let known = {
-        let known = lock();
-        match known.iter().find(|k| same(k)) {
-            Some(k) => Ok(k.2.clone()),
-            None => Err(known.iter().find_map(holds)),
-        }
-    };
-    let found = match known {
-        Ok(exact) => return exact,
-        Err(other) => other.or_else(|| find(facts, signs).map(Arc::new)),
+    // The entries are searched outside the lock (the evaluations take a while, and the
+    // other cores ask too): what was remembered when the search began.
+    let known: Vec<Entry> = lock().clone();
+    let found = match known.iter().find(|k| same(k)) {
+        Some(k) => return k.2.clone(),
+        None => known
+            .iter()
+            .find_map(holds)
+            .or_else(|| find(facts, signs).map(Arc::new)),
     };
     let mut known = lock();
     if known.len() >= KEEP {
         known.pop();
     }
     let values = facts.iter().map(|f| f.value.clone()).collect();
-    known.insert(0, (values, signs.clone(), found.clone()));
+    known.insert(0, Arc::new((values, signs.clone(), found.clone())));
     found
 }
 
