@@ -209,10 +209,12 @@ pub fn at(name: &str, u: &Rat) -> AtomId {
     intern(Atom::At(name.to_string(), u.clone()))
 }
 
-/// The atom with id `id`. Ids only come from [`intern`], so the lookup cannot fail;
-/// an unknown id (a bug) reads as the symbol `?`.
+/// The atom with id `id`, lent for the whole process (entries never change or move).
+/// Ids only come from [`intern`], so the lookup cannot fail; an unknown id (a bug) reads
+/// as the symbol `?`.
 pub fn get(id: AtomId) -> &'static Atom {
-    atom_ref(id)
+    static UNKNOWN: LazyLock<Atom> = LazyLock::new(|| Atom::Sym("?".into()));
+    entry(id).map_or(&*UNKNOWN, |e| &*e.atom)
 }
 
 /// The reduction rule of each atom in `ids`.
@@ -238,12 +240,6 @@ pub fn sym_str(id: AtomId) -> Option<&'static str> {
         Some(Atom::Sym(s)) => Some(s),
         _ => None,
     }
-}
-
-/// The atom with id `id`, borrowed (an unknown id, a bug, reads as the symbol `?`).
-fn atom_ref(id: AtomId) -> &'static Atom {
-    static UNKNOWN: LazyLock<Atom> = LazyLock::new(|| Atom::Sym("?".into()));
-    entry(id).map_or(&*UNKNOWN, |e| &*e.atom)
 }
 
 /// Whether `id` is π.
@@ -274,7 +270,7 @@ pub fn cmp_atoms(a: AtomId, b: AtomId) -> Ordering {
     if a == b {
         return Ordering::Equal;
     }
-    let (x, y) = (atom_ref(a), atom_ref(b));
+    let (x, y) = (get(a), get(b));
     kind_rank(x).cmp(&kind_rank(y)).then_with(|| match (x, y) {
         (Atom::Sym(p), Atom::Sym(q)) => caseless(p, q).then_with(|| p.cmp(q)),
         (Atom::Moment(b1, e1), Atom::Moment(b2, e2)) => b1.cmp(b2).then_with(|| e1.cmp(e2)),
