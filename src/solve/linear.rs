@@ -435,14 +435,26 @@ pub(super) mod tests {
     use num_bigint::BigInt;
     use proptest::prelude::*;
 
+    /// The tests' atom `i`: a symbol of its own, interned after atoms `0..i`, so that ids
+    /// follow the indices in every run. A bare `AtomId::from_index(i)` would be whatever
+    /// atom the test process happened to intern `i`-th (it varies with the order the
+    /// tests run in, and it may carry a rewrite rule, which `solve` looks at).
+    pub(in crate::solve) fn var(i: u32) -> AtomId {
+        let name = |k: u32| format!("solve_test_x{k}");
+        for k in 0..i {
+            atom::sym(&name(k));
+        }
+        atom::sym(&name(i))
+    }
+
     /// A small polynomial from `(atom, exponent)` lists and integer coefficients
-    /// (atoms 0–3, so products of entries share atoms and cancel).
+    /// (atoms [`var`] 0–3, so products of entries share atoms and cancel).
     pub(in crate::solve) fn poly(terms: &[(Vec<(u32, u32)>, i64)]) -> Poly {
         Poly::from_terms(
             terms
                 .iter()
                 .filter_map(|(m, c)| {
-                    let m = m.iter().map(|&(a, e)| (AtomId::from_index(a), e));
+                    let m = m.iter().map(|&(a, e)| (var(a), e));
                     Some((
                         Mono::from_pairs(m.collect())?,
                         Q::from_integer(BigInt::from(*c)),
@@ -517,13 +529,21 @@ pub(super) mod tests {
                 Err(e) => return Err(TestCaseError::fail(format!("{e}"))),
                 Ok(x) => {
                     prop_assert!(!det.is_zero());
+                    prop_assert_eq!(x.len(), n);
+                    // Σ_j a_ij·p_j/q_j = b_i, multiplied through by Π_k q_k: polynomial
+                    // products and sums only (adding the quotients as rational functions
+                    // takes multivariate gcds, which can run for minutes on some draws).
+                    let fail = |e: Limit| TestCaseError::fail(format!("{e}"));
+                    let dens = x.iter().try_fold(Poly::one(), |d, xi| d.mul(xi.den())).map_err(fail)?;
                     for (row, rhs) in a.iter().zip(&b) {
-                        let mut lhs = Rat::zero();
-                        for (c, xi) in row.iter().zip(&x) {
-                            lhs = lhs.add(&c.mul(xi).map_err(|e| TestCaseError::fail(format!("{e}")))?)
-                                .map_err(|e| TestCaseError::fail(format!("{e}")))?;
+                        prop_assert!(rhs.den().is_one() && row.iter().all(|c| c.den().is_one()));
+                        let mut lhs = Poly::zero();
+                        for (j, (c, xj)) in row.iter().map(Rat::num).zip(&x).enumerate() {
+                            let others = x.iter().enumerate().filter(|(k, _)| *k != j)
+                                .try_fold(Poly::one(), |d, (_, xk)| d.mul(xk.den())).map_err(fail)?;
+                            lhs = lhs.add(&c.mul(xj.num()).and_then(|t| t.mul(&others)).map_err(fail)?);
                         }
-                        prop_assert_eq!(&lhs, rhs);
+                        prop_assert_eq!(lhs, rhs.num().mul(&dens).map_err(fail)?);
                     }
                 }
             }
@@ -659,7 +679,7 @@ pub(super) mod tests {
     #[test]
     fn huge_coefficients_fall_back() {
         let big = Poly::constant(Q::from_integer(BigInt::from(i128::MAX) * 4));
-        let x = Poly::atom(AtomId::from_index(0));
+        let x = Poly::atom(var(0));
         let m = vec![
             vec![big.clone(), x.clone(), Poly::one()],
             vec![x, big, Poly::one()],

@@ -187,7 +187,7 @@ fn common_content(p: &Poly, full: &Mono) -> Option<Mono> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::linear::tests::poly;
+    use super::super::linear::tests::{poly, var};
     use super::*;
     use num_bigint::BigInt;
     use proptest::prelude::*;
@@ -203,12 +203,8 @@ mod tests {
 
     fn any_mono() -> impl Strategy<Value = Mono> {
         proptest::collection::vec((0u32..4, 1u32..3), 0..3).prop_map(|p| {
-            Mono::from_pairs(
-                p.into_iter()
-                    .map(|(a, e)| (AtomId::from_index(a), e))
-                    .collect(),
-            )
-            .unwrap_or_else(Mono::one)
+            Mono::from_pairs(p.into_iter().map(|(a, e)| (var(a), e)).collect())
+                .unwrap_or_else(Mono::one)
         })
     }
 
@@ -225,7 +221,7 @@ mod tests {
             any::<bool>(),
         )
             .prop_map(|(a, b, second, kappa, m, c, r, multiple)| {
-                let x = Poly::atom(AtomId::from_index(0));
+                let x = Poly::atom(var(0));
                 let ok = |p: Result<Poly, Limit>| p.unwrap_or_else(|_| Poly::zero());
                 let mut p = ok(a.mul(&x)).add(&b);
                 if kappa == 0 {
@@ -267,7 +263,7 @@ mod tests {
     /// factor cancels it.
     #[test]
     fn irreducible_and_reducible_determinants() {
-        let x = |i: u32| Poly::atom(AtomId::from_index(i));
+        let x = |i: u32| Poly::atom(var(i));
         let ok = |p: Result<Poly, Limit>| p.unwrap_or_else(|e| panic!("{e}"));
         // 2·x₁·(x₀ x₂ + x₃): linear in x₀, coefficients x₂ and x₃ coprime.
         let p = ok(x(0).mul(&x(2))).add(&x(3));
