@@ -200,11 +200,7 @@ fn monomial_gcd_by_evaluation(a: &Poly, b: &Poly) -> Option<Mono> {
         if pending.is_empty() {
             break;
         }
-        let value = |x: AtomId| -> u64 {
-            let h = (u64::from(x.index()) + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15)
-                ^ attempt.wrapping_mul(0xD6E8_FEB8_6659_FD93);
-            h % (P - 2) + 2
-        };
+        let value = |x: AtomId| hashed(x, attempt);
         let (ia, _) = images(a, &da, &pending, &value)?;
         let (ib, _) = images(b, &db, &pending, &value)?;
         let mut unsettled = Vec::new();
@@ -532,11 +528,15 @@ impl LinearFactor {
 }
 
 /// The value modulo [`P`] that evaluation gives atom `x` in its `attempt`-th try: in
-/// 2..P, from a multiplicative hash of the id.
+/// 2..P, from the id and the attempt mixed by splitmix64's finaliser. A multiplicative
+/// hash alone left the values of atoms linearly related (atom 3's twice atom 1's modulo
+/// `P`), so that `2·x₁ − x₃` vanished at every first point: such a point only loses a
+/// proof (the exact gcd then runs), never makes a wrong one, but it lost it every time.
 fn hashed(x: AtomId, attempt: u64) -> u64 {
-    let h = (u64::from(x.index()) + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15)
-        ^ attempt.wrapping_mul(0xD6E8_FEB8_6659_FD93);
-    h % (P - 2) + 2
+    let mut z = (u64::from(x.index()) << 8 | attempt).wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    (z ^ (z >> 31)) % (P - 2) + 2
 }
 
 /// Each atom's value and its powers modulo [`P`], up to its degree (at most 64; a higher
@@ -872,6 +872,36 @@ mod tests {
                 prop_assert_eq!(div_exact(&r, &d), Ok(None));
             }
         }
+    }
+
+    /// `k·xᵢ·x₀ − x₀²` and `x₀³ − xⱼ³` are coprime unless k = 1 and i = j (then
+    /// `x₀ − xᵢ` divides both), and evaluation proves it for every pair of atoms. (With points from a multiplicative hash of the ids, atom 3's value was
+    /// twice atom 1's modulo P, and the pair with k = 2, i = 1, j = 3 was never proved.)
+    #[test]
+    fn evaluation_proves_coprime_pairs_whatever_the_atoms_ids() {
+        let x = |i: u32| Poly::atom(crate::normal::AtomId::from_index(i));
+        let cube = |p: &Poly| p.pow(3).unwrap_or_else(|e| panic!("{e}"));
+        let mut unproved = Vec::new();
+        for k in 1..=3i64 {
+            for i in 1..24 {
+                for j in 1..24 {
+                    let a = x(i)
+                        .mul(&x(0))
+                        .map(|p| p.scale(&Q::from_integer(BigInt::from(k))))
+                        .and_then(|p| Ok(p.sub(&x(0).mul(&x(0))?)))
+                        .unwrap_or_else(|e| panic!("{e}"));
+                    let b = cube(&x(0)).sub(&cube(&x(j)));
+                    let proved = monomial_gcd_by_evaluation(&a, &b);
+                    if i == j && k == 1 {
+                        // x₀ − xᵢ divides both: never proved away.
+                        assert_eq!(proved, None);
+                    } else if proved != Some(Mono::one()) {
+                        unproved.push((k, i, j));
+                    }
+                }
+            }
+        }
+        assert!(unproved.is_empty(), "not proved coprime: {unproved:?}");
     }
 
     #[test]
