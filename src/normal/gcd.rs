@@ -875,8 +875,9 @@ mod tests {
     }
 
     /// `k·xᵢ·x₀ − x₀²` and `x₀³ − xⱼ³` are coprime unless k = 1 and i = j (then
-    /// `x₀ − xᵢ` divides both), and evaluation proves it for every pair of atoms. (With points from a multiplicative hash of the ids, atom 3's value was
-    /// twice atom 1's modulo P, and the pair with k = 2, i = 1, j = 3 was never proved.)
+    /// `x₀ − xᵢ` divides both), and evaluation proves it for every pair of atoms. (With
+    /// points from a multiplicative hash of the ids, atom 3's value was twice atom 1's
+    /// modulo P, and the pair with k = 2, i = 1, j = 3 was never proved.)
     #[test]
     fn evaluation_proves_coprime_pairs_whatever_the_atoms_ids() {
         let x = |i: u32| Poly::atom(crate::normal::AtomId::from_index(i));

@@ -534,16 +534,24 @@ pub(super) mod tests {
                     // products and sums only (adding the quotients as rational functions
                     // takes multivariate gcds, which can run for minutes on some draws).
                     let fail = |e: Limit| TestCaseError::fail(format!("{e}"));
-                    let dens = x.iter().try_fold(Poly::one(), |d, xi| d.mul(xi.den())).map_err(fail)?;
+                    // The product of the denominators of the unknowns but `skip`.
+                    let dens = |skip: Option<usize>| {
+                        x.iter()
+                            .enumerate()
+                            .filter(|(k, _)| Some(*k) != skip)
+                            .try_fold(Poly::one(), |d, (_, xk)| d.mul(xk.den()))
+                            .map_err(fail)
+                    };
+                    let all = dens(None)?;
                     for (row, rhs) in a.iter().zip(&b) {
                         prop_assert!(rhs.den().is_one() && row.iter().all(|c| c.den().is_one()));
                         let mut lhs = Poly::zero();
                         for (j, (c, xj)) in row.iter().map(Rat::num).zip(&x).enumerate() {
-                            let others = x.iter().enumerate().filter(|(k, _)| *k != j)
-                                .try_fold(Poly::one(), |d, (_, xk)| d.mul(xk.den())).map_err(fail)?;
-                            lhs = lhs.add(&c.mul(xj.num()).and_then(|t| t.mul(&others)).map_err(fail)?);
+                            let others = dens(Some(j))?;
+                            let term = c.mul(xj.num()).and_then(|t| t.mul(&others));
+                            lhs = lhs.add(&term.map_err(fail)?);
                         }
-                        prop_assert_eq!(lhs, rhs.num().mul(&dens).map_err(fail)?);
+                        prop_assert_eq!(lhs, rhs.num().mul(&all).map_err(fail)?);
                     }
                 }
             }
