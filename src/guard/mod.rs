@@ -245,7 +245,9 @@ fn free(e: &Expr, env: &GuardEnv, bound: &mut Vec<String>, out: &mut HashSet<Str
 
 /// One step of splitmix64, the small deterministic generator behind the points the guard
 /// is tried at (`check/confirm.rs`) and the differential test's random pairs: the same
-/// sequence on every platform and in every run. The one copy of it in the repository.
+/// sequence on every platform and in every run. The one generator in the repository
+/// (`normal/gcd.rs` mixes its evaluation points with the same finaliser, a hash there:
+/// the guard shares no code with the engine it checks).
 pub fn splitmix64(state: &mut u64) -> u64 {
     *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
     let mut z = *state;
