@@ -3,7 +3,7 @@
 
 use crate::normal::atom::{self, Atom, AtomId};
 use crate::normal::mono::Mono;
-use crate::normal::subst::{atom_depends_on, depends_on, subst_atom};
+use crate::normal::subst::{atom_depends_on, depends_on, subst_atom, subst_atom_owned};
 use crate::normal::{func, trig, Assumptions, NormError, Poly, Rat, Q};
 use num_bigint::BigInt;
 use num_traits::One;
@@ -282,7 +282,12 @@ fn tabular(k: u32, kind: Kind, u: &Rat, x: AtomId, s: &Assumptions) -> Result<Ra
 /// `∫_a^b f dx`.
 pub fn definite(f: &Rat, x: AtomId, a: &Rat, b: &Rat, s: &Assumptions) -> Result<Rat, IntError> {
     let big_f = antiderivative(f, x, s)?;
-    let hi = subst_atom(&big_f, x, b, s)?;
     let lo = subst_atom(&big_f, x, a, s)?;
+    // The antiderivative is not needed after its upper value: a bound that is a symbol
+    // is then renamed into it in place.
+    let hi = subst_atom_owned(big_f, x, b, s)?;
+    if lo.is_zero() {
+        return Ok(hi);
+    }
     Ok(hi.sub(&lo)?)
 }

@@ -202,16 +202,23 @@ impl Mono {
         Some((Mono(out), had.unwrap_or(0)))
     }
 
-    /// `self` with atom `x` replaced by atom `a`, which does not occur in it.
-    pub(crate) fn renamed(&self, x: AtomId, a: AtomId) -> Mono {
+    /// Atom `x` replaced by atom `a`, which does not occur in `self`, in place: the pairs
+    /// between the two positions move up or down one place.
+    pub(crate) fn rename(&mut self, x: AtomId, a: AtomId) {
         let Ok(i) = self.0.binary_search_by_key(&x, |p| p.0) else {
-            return self.clone();
+            return;
         };
-        let mut out = self.0.clone();
-        let e = out.remove(i);
-        let j = out.partition_point(|p| p.0 < a);
-        out.insert(j, (a, e.1));
-        Mono(out)
+        debug_assert!(self.0.binary_search_by_key(&a, |p| p.0).is_err());
+        let e = self.0[i].1;
+        // The first place whose atom is at least `a`, counted with `x` still at `i`.
+        let j = self.0.partition_point(|p| p.0 < a);
+        if j > i {
+            self.0[i..j].rotate_left(1);
+            self.0[j - 1] = (a, e);
+        } else {
+            self.0[j..=i].rotate_right(1);
+            self.0[j] = (a, e);
+        }
     }
 
     /// The highest atom id present.

@@ -92,23 +92,23 @@ impl Poly {
         Poly { terms }
     }
 
-    /// `self` with atom `x` renamed to `a`, an atom that does not occur in `self`.
-    pub(crate) fn rename(&self, x: AtomId, a: AtomId) -> Option<Poly> {
+    /// Atom `x` renamed to `a` in place, reusing the terms. `false`, with `self`
+    /// unchanged, when `a` already occurs (the renaming would merge two atoms).
+    pub(crate) fn rename(&mut self, x: AtomId, a: AtomId) -> bool {
         if !self.contains(x) {
-            return Some(self.clone());
+            return true;
         }
         if self.contains(a) {
-            return None;
+            return false;
         }
-        let mut terms: Vec<(Mono, Q)> = Vec::with_capacity(self.terms.len());
-        for (m, q) in &self.terms {
-            terms.push((m.renamed(x, a), q.clone()));
+        for (m, _) in &mut self.terms {
+            m.rename(x, a);
         }
         // Distinct monomials stay distinct (a is new): sorting restores the order.
-        if !terms.is_sorted_by(|s, t| s.0 < t.0) {
-            terms.sort_unstable_by(|s, t| s.0.cmp(&t.0));
+        if !self.terms.is_sorted_by(|s, t| s.0 < t.0) {
+            self.terms.sort_unstable_by(|s, t| s.0.cmp(&t.0));
         }
-        Some(Poly { terms })
+        true
     }
 
     /// The terms, ascending.

@@ -278,30 +278,42 @@ impl Rat {
     /// even inside another atom) and `x` occurs only as itself: renaming is then a ring
     /// isomorphism, so the fraction stays reduced and needs no gcd.
     pub fn rename_symbol(&self, x: super::atom::AtomId, a: super::atom::AtomId) -> Option<Rat> {
-        self.rename_symbol_among(x, a, &self.atoms())
+        self.clone().into_renamed_symbol(x, a, &self.atoms()).ok()
     }
 
-    /// [`Rat::rename_symbol`] with `atoms`, the value of `self.atoms()`, given.
-    pub(crate) fn rename_symbol_among(
-        &self,
+    /// Whether renaming `x` to `a` in a value whose atoms are `atoms` is a ring
+    /// isomorphism: both are symbols, `a` occurs nowhere, not even inside another atom
+    /// (`sqrt(a)` would relate to `a`), and `x` occurs only as itself.
+    pub(crate) fn renames_symbol(
         x: super::atom::AtomId,
         a: super::atom::AtomId,
         atoms: &[super::atom::AtomId],
-    ) -> Option<Rat> {
+    ) -> bool {
         use super::atom::{self, Atom};
+        use super::subst::atom_depends_on;
         let symbol = |id| matches!(atom::get(id), Atom::Sym(_));
-        if !symbol(x) || !symbol(a) {
-            return None;
+        symbol(x)
+            && symbol(a)
+            && !atoms.iter().any(|&b| atom_depends_on(b, a))
+            && !atoms.iter().any(|&b| b != x && atom_depends_on(b, x))
+    }
+
+    /// [`Rat::rename_symbol`] of a value the caller gives up, with `atoms`, the value of
+    /// `self.atoms()`, given: the terms are renamed where they are, with no copy.
+    /// `Err(self)`, unchanged, when the renaming is not an isomorphism.
+    pub(crate) fn into_renamed_symbol(
+        mut self,
+        x: super::atom::AtomId,
+        a: super::atom::AtomId,
+        atoms: &[super::atom::AtomId],
+    ) -> Result<Rat, Rat> {
+        if !Rat::renames_symbol(x, a, atoms) || self.contains(a) {
+            return Err(self);
         }
-        // `a` nowhere, not even inside another atom (`sqrt(a)` would relate to `a`).
-        if atoms.iter().any(|&b| super::subst::atom_depends_on(b, a))
-            || atoms
-                .iter()
-                .any(|&b| b != x && super::subst::atom_depends_on(b, x))
-        {
-            return None;
-        }
-        Some(Rat::monic(self.num.rename(x, a)?, self.den.rename(x, a)?))
+        // `a` occurs in neither polynomial, so both renamings take place.
+        let renamed = self.num.rename(x, a) & self.den.rename(x, a);
+        debug_assert!(renamed);
+        Ok(Rat::monic(self.num, self.den))
     }
 
     /// `(a/b)·(c/d)` for reduced fractions of rule-free atoms: cancel `gcd(a, d)` and

@@ -9,6 +9,7 @@ use super::sign::Assumptions;
 use super::trig;
 use super::NormError;
 use foldhash::{HashMap, HashMapExt};
+use std::borrow::Cow;
 
 /// Replaces atoms: `map(a)` gives the new value of atom `a` (or `None` to keep it,
 /// in which case atoms inside its arguments are still replaced).
@@ -230,23 +231,44 @@ pub fn rebuild_under(r: &Rat, x: AtomId, s: &Assumptions) -> Result<Rat, NormErr
 
 /// `r` with atom `x` replaced by `v`.
 pub fn subst_atom(r: &Rat, x: AtomId, v: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
+    subst_atom_cow(Cow::Borrowed(r), x, v, s)
+}
+
+/// [`subst_atom`] of a value the caller gives up: renaming a symbol to another (a
+/// bound of integration, say) reuses its terms instead of copying them.
+pub fn subst_atom_owned(r: Rat, x: AtomId, v: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
+    subst_atom_cow(Cow::Owned(r), x, v, s)
+}
+
+fn subst_atom_cow(
+    mut r: Cow<'_, Rat>,
+    x: AtomId,
+    v: &Rat,
+    s: &Assumptions,
+) -> Result<Rat, NormError> {
     let atoms = r.atoms();
     // Whether `x` occurs only as itself, never inside another atom's arguments.
     let only_itself = atoms.iter().all(|&b| b == x || !atom_depends_on(b, x));
     if only_itself && atoms.binary_search(&x).is_err() {
-        return Ok(r.clone());
+        return Ok(r.into_owned());
     }
     if only_itself {
-        if let Some(renamed) = v
-            .as_atom()
-            .and_then(|a| r.rename_symbol_among(x, a, &atoms))
-        {
-            return Ok(renamed);
+        let to = v.as_atom().filter(|&a| Rat::renames_symbol(x, a, &atoms));
+        if let Some(a) = to {
+            match r.into_owned().into_renamed_symbol(x, a, &atoms) {
+                Ok(renamed) => return Ok(renamed),
+                Err(back) => r = Cow::Owned(back),
+            }
         }
-        if let Some(out) = monomial_value(r, x, v)? {
+        if let Some(out) = monomial_value(&r, x, v)? {
             return Ok(out);
         }
     }
+    subst_atom_general(&r, x, v, s)
+}
+
+/// [`subst_atom`] by the general substitution.
+fn subst_atom_general(r: &Rat, x: AtomId, v: &Rat, s: &Assumptions) -> Result<Rat, NormError> {
     let f = |a: AtomId| (a == x).then(|| v.clone());
     Subst::new(&f, s).rat(r)
 }
@@ -414,6 +436,32 @@ mod tests {
             };
             let fast = subst_atom(&r, x, &v, &Assumptions::new());
             prop_assert_eq!(fast, general(&r, x, &v));
+        }
+    }
+
+    proptest! {
+        /// Renaming `x` to a fresh symbol whose id lies beyond other atoms', upward or
+        /// downward, borrowed or given up, gives the general path's value.
+        #[test]
+        fn renaming_agrees_with_the_general_substitution(
+            num in terms(3),
+            den in terms(3),
+            upward in any::<bool>(),
+        ) {
+            // Interned in this order, so their ids are in this order too.
+            let [lo, p, x, q, hi] = ["lo", "p", "x", "q", "hi"]
+                .map(|n| sym(&format!("subst_rename_test_{n}")));
+            prop_assert!(lo < p && p < x && x < q && q < hi);
+            let num = poly_of(&[p, x, q], &num);
+            let den = poly_of(&[p, x, q], &den);
+            let Ok(r) = Rat::new(num, if den.is_zero() { Poly::one() } else { den }) else {
+                return Ok(());
+            };
+            let v = Rat::atom(if upward { hi } else { lo });
+            let expected = general(&r, x, &v);
+            let s = Assumptions::new();
+            prop_assert_eq!(&subst_atom(&r, x, &v, &s), &expected);
+            prop_assert_eq!(&subst_atom_owned(r, x, &v, &s), &expected);
         }
     }
 
