@@ -631,6 +631,26 @@ fn mul_packed(
     let (Some(pa), Some(pb)) = (packed(ia), packed(ib)) else {
         return Ok(None);
     };
+    if pa.len() <= 8 {
+        // A short factor (`ia` is the shorter): each of its terms shifts the other in
+        // order (the fields hold the product's degrees: no carry), and a merge tree of the
+        // sorted shifts needs no hash table.
+        let parts = pa
+            .iter()
+            .map(|&(m, c)| {
+                pb.iter()
+                    .map(|&(x, d)| Some((x + m, d.checked_mul(c)?)))
+                    .collect()
+            })
+            .collect::<Option<Vec<Vec<_>>>>();
+        let Some(v) = parts.and_then(merge_tree) else {
+            return Ok(None);
+        };
+        if v.len() > max_terms() {
+            return Err(Limit::terms());
+        }
+        return Ok(Some(unpacked(&pk, v, scale)));
+    }
     let mut acc: HashMap<u128, i128, FxBuild> =
         HashMap::with_capacity_and_hasher(pa.len().saturating_mul(pb.len()).min(1 << 16), FxBuild);
     for (x, c1) in &pa {
@@ -646,12 +666,17 @@ fn mul_packed(
     let mut v: Vec<(u128, i128)> = acc.into_iter().filter(|t| t.1 != 0).collect();
     // The integer order of packed monomials is the monomial order.
     v.sort_unstable_by_key(|t| t.0);
-    Ok(Some(Poly {
+    Ok(Some(unpacked(&pk, v, scale)))
+}
+
+/// The polynomial `scale · Σ c·m` of ascending packed terms with nonzero coefficients.
+fn unpacked(pk: &super::pack::Packing, v: Vec<(u128, i128)>, scale: &Q) -> Poly {
+    Poly {
         terms: v
             .into_iter()
             .map(|(k, c)| (pk.unpack(k), scale_int(c, scale)))
             .collect(),
-    }))
+    }
 }
 
 /// `p^k` by k − 1 multiplications by `p`, all on packed monomials with `i128`
@@ -689,21 +714,10 @@ fn pow_packed(p: &Poly, k: u64) -> Result<Option<Poly>, Limit> {
             };
             parts.push(part);
         }
-        while parts.len() > 1 {
-            let mut next = Vec::with_capacity(parts.len().div_ceil(2));
-            let mut it = parts.into_iter();
-            while let Some(a) = it.next() {
-                next.push(match it.next() {
-                    Some(b) => match merge_packed(&a, &b) {
-                        Some(v) => v,
-                        None => return Ok(None),
-                    },
-                    None => a,
-                });
-            }
-            parts = next;
-        }
-        acc = parts.pop().unwrap_or_default();
+        let Some(sum) = merge_tree(parts) else {
+            return Ok(None);
+        };
+        acc = sum;
         if acc.len() > max_terms() {
             return Err(Limit::terms());
         }
@@ -719,6 +733,22 @@ fn pow_packed(p: &Poly, k: u64) -> Result<Option<Poly>, Limit> {
             .map(|(x, c)| (pk.unpack(x), scale_int(c, &scale)))
             .collect(),
     }))
+}
+
+/// The sum of ascending packed polynomials, merged pairwise; `None` on overflow.
+fn merge_tree(mut parts: Vec<Vec<(u128, i128)>>) -> Option<Vec<(u128, i128)>> {
+    while parts.len() > 1 {
+        let mut next = Vec::with_capacity(parts.len().div_ceil(2));
+        let mut it = parts.into_iter();
+        while let Some(a) = it.next() {
+            next.push(match it.next() {
+                Some(b) => merge_packed(&a, &b)?,
+                None => a,
+            });
+        }
+        parts = next;
+    }
+    Some(parts.pop().unwrap_or_default())
 }
 
 /// The sum of two ascending packed polynomials, `None` on overflow.
@@ -863,12 +893,17 @@ mod tests {
     use proptest::prelude::*;
 
     fn any_poly() -> impl Strategy<Value = Poly> {
+        poly_of_up_to(5)
+    }
+
+    /// Polynomials of 2 to `n − 1` terms drawn (fewer when monomials repeat).
+    fn poly_of_up_to(n: usize) -> impl Strategy<Value = Poly> {
         let term = (
             proptest::collection::vec((0u32..4, 1u32..3), 0..3),
             -3i64..=3,
             1i64..=3,
         );
-        proptest::collection::vec(term, 2..5).prop_map(|ts| {
+        proptest::collection::vec(term, 2..n).prop_map(|ts| {
             Poly::from_terms(
                 ts.into_iter()
                     .filter_map(|(m, n, d)| {
@@ -905,6 +940,19 @@ mod tests {
         fn constant_tests_agree_on_any_poly(p in any_poly()) {
             prop_assert_eq!(p.is_constant(), p.as_constant().is_some());
             prop_assert_eq!(p.is_one(), p.as_constant() == Some(Q::one()));
+        }
+
+        /// The product, by whichever path its sizes take (a short factor's merge tree, a
+        /// hash table of packed monomials), is the sum of one factor times each term of the
+        /// other.
+        #[test]
+        fn product_is_the_sum_of_the_term_products(p in poly_of_up_to(14), q in poly_of_up_to(14)) {
+            let mut want = Poly::zero();
+            for (m, c) in p.terms() {
+                let part = q.mul_term(m, c).unwrap_or_else(|e| panic!("{e:?}"));
+                want = want.add(&part);
+            }
+            prop_assert_eq!(p.mul(&q), Ok(want));
         }
 
         /// The packed power is the product of k copies, term for term.
