@@ -33,85 +33,101 @@ fn sorted_factors(m: &Mono) -> Vec<(AtomId, u32)> {
 /// Terms of a polynomial in print order.
 #[cfg(test)]
 fn print_terms(p: &Poly) -> Vec<(Mono, Q)> {
-    print_order(&print_keys(p).1)
+    PrintKeys::of(p)
+        .order()
         .into_iter()
         .map(|i| p.terms()[i].clone())
         .collect()
 }
 
-/// The indices of the terms in print order.
-fn print_order(keys: &[PrintKey]) -> Vec<usize> {
-    let mut order: Vec<usize> = (0..keys.len()).collect();
-    // Ties (atoms that print alike) keep the terms' order, as a stable sort would.
-    order.sort_unstable_by(|&i, &j| cmp_keys(&keys[i], &keys[j]).then(i.cmp(&j)));
-    order
-}
-
 /// The first term of `p` in print order.
 fn first_print_term(p: &Poly) -> Option<&(Mono, Q)> {
-    let keys = print_keys(p).1;
+    let keys = PrintKeys::of(p);
     (0..p.len())
-        .min_by(|&i, &j| cmp_keys(&keys[i], &keys[j]))
+        .min_by(|&i, &j| keys.cmp(i, j))
         .map(|i| &p.terms()[i])
 }
 
-/// A monomial's sort key: its degree and its factors as `(rank, slot, exponent)` in print
-/// order, where `rank` numbers the polynomial's atoms in [`cmp_atoms`] order (atoms
-/// that compare equal share a rank) and `slot` is the atom's place in the list
-/// [`print_keys`] returns. Comparing keys with [`cmp_keys`] is [`cmp_monos`] without
-/// comparing atoms again for every pair of terms.
-type PrintKey = (u64, Vec<(usize, usize, u32)>);
-
-/// The polynomial's atoms in [`cmp_atoms`] order, and each term's key.
-fn print_keys(p: &Poly) -> (Vec<AtomId>, Vec<PrintKey>) {
-    let mut atoms = p.atoms();
-    atoms.sort_by(|a, b| cmp_atoms(*a, *b));
-    // (atom, rank, slot), by atom id.
-    let mut ranks: Vec<(AtomId, usize, usize)> = Vec::with_capacity(atoms.len());
-    for (i, &a) in atoms.iter().enumerate() {
-        let rank = match (i.checked_sub(1).and_then(|j| atoms.get(j)), ranks.last()) {
-            (Some(&prev), Some(&(_, r, _))) if cmp_atoms(prev, a) == Ordering::Equal => r,
-            _ => i,
-        };
-        ranks.push((a, rank, i));
-    }
-    ranks.sort_unstable_by_key(|t| t.0);
-    let rank_of = |a: AtomId| {
-        ranks
-            .binary_search_by_key(&a, |t| t.0)
-            .map_or((usize::MAX, usize::MAX), |i| (ranks[i].1, ranks[i].2))
-    };
-    let keys = p
-        .terms()
-        .iter()
-        .map(|(m, _)| {
-            let mut f: Vec<(usize, usize, u32)> = m
-                .pairs()
-                .iter()
-                .map(|&(a, e)| {
-                    let (rank, slot) = rank_of(a);
-                    (rank, slot, e)
-                })
-                .collect();
-            // A stable sort, as `sorted_factors`: equal ranks keep the id order.
-            f.sort_by_key(|t| t.0);
-            (m.degree(), f)
-        })
-        .collect();
-    (atoms, keys)
+/// The sort keys of a polynomial's terms. A term's key is its degree and its factors as
+/// `(rank, slot, exponent)` in print order, where `rank` numbers the polynomial's atoms
+/// in [`cmp_atoms`] order (atoms that compare equal share a rank) and `slot` is the
+/// atom's place in `atoms`. Comparing keys ([`PrintKeys::cmp`]) is [`cmp_monos`] without
+/// comparing atoms again for every pair of terms. The factors of all the terms share one
+/// list, so a long polynomial costs two allocations, not one per term.
+struct PrintKeys {
+    /// The polynomial's atoms in [`cmp_atoms`] order.
+    atoms: Vec<AtomId>,
+    /// Each term's degree and the range of its factors in `factors`.
+    terms: Vec<(u64, usize, usize)>,
+    factors: Vec<(usize, usize, u32)>,
 }
 
-/// [`cmp_monos`] on keys from [`print_keys`].
-fn cmp_keys(a: &PrintKey, b: &PrintKey) -> Ordering {
-    b.0.cmp(&a.0).then_with(|| {
-        for (x, y) in a.1.iter().zip(b.1.iter()) {
-            let o = x.0.cmp(&y.0).then(y.2.cmp(&x.2));
-            if o != Ordering::Equal {
-                return o;
-            }
+impl PrintKeys {
+    fn of(p: &Poly) -> PrintKeys {
+        let mut atoms = p.atoms();
+        atoms.sort_by(|a, b| cmp_atoms(*a, *b));
+        // (atom, rank, slot), by atom id.
+        let mut ranks: Vec<(AtomId, usize, usize)> = Vec::with_capacity(atoms.len());
+        for (i, &a) in atoms.iter().enumerate() {
+            let rank = match (i.checked_sub(1).and_then(|j| atoms.get(j)), ranks.last()) {
+                (Some(&prev), Some(&(_, r, _))) if cmp_atoms(prev, a) == Ordering::Equal => r,
+                _ => i,
+            };
+            ranks.push((a, rank, i));
         }
-        b.1.len().cmp(&a.1.len())
-    })
+        ranks.sort_unstable_by_key(|t| t.0);
+        let rank_of = |a: AtomId| {
+            ranks
+                .binary_search_by_key(&a, |t| t.0)
+                .map_or((usize::MAX, usize::MAX), |i| (ranks[i].1, ranks[i].2))
+        };
+        let pairs = p.terms().iter().map(|(m, _)| m.pairs().len()).sum();
+        let mut factors: Vec<(usize, usize, u32)> = Vec::with_capacity(pairs);
+        let mut terms = Vec::with_capacity(p.len());
+        for (m, _) in p.terms() {
+            let start = factors.len();
+            factors.extend(m.pairs().iter().map(|&(a, e)| {
+                let (rank, slot) = rank_of(a);
+                (rank, slot, e)
+            }));
+            // A stable sort, as `sorted_factors`: equal ranks keep the id order.
+            factors[start..].sort_by_key(|t| t.0);
+            terms.push((m.degree(), start, factors.len()));
+        }
+        PrintKeys {
+            atoms,
+            terms,
+            factors,
+        }
+    }
+
+    /// Term `i`'s factors in print order.
+    fn factors(&self, i: usize) -> &[(usize, usize, u32)] {
+        let (_, start, end) = self.terms[i];
+        &self.factors[start..end]
+    }
+
+    /// [`cmp_monos`] of terms `i` and `j`.
+    fn cmp(&self, i: usize, j: usize) -> Ordering {
+        let (a, b) = (self.factors(i), self.factors(j));
+        self.terms[j].0.cmp(&self.terms[i].0).then_with(|| {
+            for (x, y) in a.iter().zip(b.iter()) {
+                let o = x.0.cmp(&y.0).then(y.2.cmp(&x.2));
+                if o != Ordering::Equal {
+                    return o;
+                }
+            }
+            b.len().cmp(&a.len())
+        })
+    }
+
+    /// The indices of the terms in print order.
+    fn order(&self) -> Vec<usize> {
+        let mut order: Vec<usize> = (0..self.terms.len()).collect();
+        // Ties (atoms that print alike) keep the terms' order, as a stable sort would.
+        order.sort_unstable_by(|&i, &j| self.cmp(i, j).then(i.cmp(&j)));
+        order
+    }
 }
 
 /// The plain text of a normal form.
@@ -234,11 +250,10 @@ fn write_poly(out: &mut String, p: &Poly, style: Style) {
         out.push('0');
         return;
     }
-    let (atoms, keys) = print_keys(p);
-    let infos: Vec<AtomPrint> = atoms.iter().map(|&a| AtomPrint::new(a)).collect();
-    let pairs: usize = keys.iter().map(|k| k.1.len()).sum();
-    out.reserve(p.len() * 8 + pairs * 4);
-    for (i, k) in print_order(&keys).into_iter().enumerate() {
+    let keys = PrintKeys::of(p);
+    let infos: Vec<AtomPrint> = keys.atoms.iter().map(|&a| AtomPrint::new(a)).collect();
+    out.reserve(p.len() * 8 + keys.factors.len() * 4);
+    for (i, k) in keys.order().into_iter().enumerate() {
         let q = &p.terms()[k].1;
         let neg = q.is_negative();
         if i == 0 {
@@ -248,7 +263,7 @@ fn write_poly(out: &mut String, p: &Poly, style: Style) {
         } else {
             out.push_str(if neg { " - " } else { " + " });
         }
-        let factors = keys[k].1.iter().map(|f| (&infos[f.1], f.2));
+        let factors = keys.factors(k).iter().map(|f| (&infos[f.1], f.2));
         write_term(out, factors, q.numer().magnitude(), q.denom(), style);
     }
 }
