@@ -572,7 +572,7 @@ impl<'a> Lowerer<'a> {
             let lo = self.at(&big_f, &var, &a).map_err(|e| err(sp, e))?;
             return hi.sub(&lo).map_err(|e| err(sp, e));
         }
-        let big_f = calculus::antiderivative(&fv, x, &s).map_err(|e| int_err(body.span, e))?;
+        let big_f = calculus::antiderivative_owned(fv, x, &s).map_err(|e| int_err(body.span, e))?;
         let lo = subst_atom(&big_f, x, &a, self.signs());
         // The antiderivative is given up to its upper value: a bound that is a symbol is
         // renamed into it in place. The upper value's error, if any, is reported first.

@@ -202,6 +202,22 @@ impl Mono {
         Some((Mono(out), had.unwrap_or(0)))
     }
 
+    /// [`Mono::times_atom`] in place: `self` becomes `self · a`, and the exponent `a` had
+    /// is returned; `None`, with `self` unchanged, on exponent overflow.
+    pub(crate) fn mul_by_atom(&mut self, a: AtomId) -> Option<u32> {
+        match self.0.binary_search_by_key(&a, |p| p.0) {
+            Ok(i) => {
+                let e = self.0[i].1;
+                self.0[i].1 = e.checked_add(1)?;
+                Some(e)
+            }
+            Err(i) => {
+                self.0.insert(i, (a, 1));
+                Some(0)
+            }
+        }
+    }
+
     /// Atom `x` replaced by atom `a`, which does not occur in `self`, in place: the pairs
     /// between the two positions move up or down one place.
     pub(crate) fn rename(&mut self, x: AtomId, a: AtomId) {

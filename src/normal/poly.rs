@@ -111,6 +111,11 @@ impl Poly {
         true
     }
 
+    /// The terms, ascending, given up.
+    pub(crate) fn into_terms(self) -> Vec<(Mono, Q)> {
+        self.terms
+    }
+
     /// The terms, ascending.
     pub fn terms(&self) -> &[(Mono, Q)] {
         &self.terms

@@ -164,6 +164,11 @@ impl Rat {
         }
     }
 
+    /// The numerator and the denominator, given up.
+    pub fn into_parts(self) -> (Poly, Poly) {
+        (self.num, self.den)
+    }
+
     /// The numerator.
     pub fn num(&self) -> &Poly {
         &self.num
