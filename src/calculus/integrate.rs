@@ -110,7 +110,7 @@ pub fn antiderivative(f: &Rat, x: AtomId, s: &Assumptions) -> Result<Rat, IntErr
 
 /// [`antiderivative`] of an integrand the caller gives up: a polynomial in which `x`
 /// occurs only as itself is integrated where it is, each term's monomial and coefficient
-/// replaced in place (the fast path of [`polynomial_antiderivative`], with no copy).
+/// replaced in place (the fast path of the borrowed one, with no copy).
 pub fn antiderivative_owned(f: Rat, x: AtomId, s: &Assumptions) -> Result<Rat, IntError> {
     let in_place = f.den().is_one()
         && !crate::normal::power::has_kept(&f)
@@ -327,24 +327,9 @@ mod tests {
     use super::*;
     use crate::calculus::diff::{diff, Wrt};
     use crate::normal::atom::sym;
-    use crate::normal::mono::Mono;
     use proptest::prelude::*;
 
-    /// A polynomial in `ids` from `(exponents, numerator, denominator)` terms.
-    fn poly_of(ids: &[AtomId], terms: &[(Vec<u32>, i64, i64)]) -> Poly {
-        Poly::from_terms(
-            terms
-                .iter()
-                .filter_map(|(es, n, d)| {
-                    let pairs = ids.iter().copied().zip(es.iter().copied()).collect();
-                    Some((
-                        Mono::from_pairs(pairs)?,
-                        Q::new(BigInt::from(*n), BigInt::from(*d)),
-                    ))
-                })
-                .collect(),
-        )
-    }
+    use crate::normal::poly::from_exponents as poly_of;
 
     fn terms() -> impl Strategy<Value = Vec<(Vec<u32>, i64, i64)>> {
         proptest::collection::vec(

@@ -674,6 +674,24 @@ fn mul_packed(
     Ok(Some(unpacked(&pk, v, scale)))
 }
 
+/// A polynomial in the atoms `ids` from `(exponents, numerator, denominator)` terms, one
+/// exponent per atom (tests draw polynomials this way).
+#[cfg(test)]
+pub(crate) fn from_exponents(ids: &[AtomId], terms: &[(Vec<u32>, i64, i64)]) -> Poly {
+    Poly::from_terms(
+        terms
+            .iter()
+            .filter_map(|(es, n, d)| {
+                let pairs = ids.iter().copied().zip(es.iter().copied()).collect();
+                Some((
+                    Mono::from_pairs(pairs)?,
+                    Q::new(BigInt::from(*n), BigInt::from(*d)),
+                ))
+            })
+            .collect(),
+    )
+}
+
 /// The polynomial `scale · Σ c·m` of ascending packed terms with nonzero coefficients.
 fn unpacked(pk: &super::pack::Packing, v: Vec<(u128, i128)>, scale: &Q) -> Poly {
     Poly {

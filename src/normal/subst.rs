@@ -387,21 +387,7 @@ mod tests {
         Subst::new(&f, &s).rat(r)
     }
 
-    /// A polynomial in the atoms `ids` from `(exponents, numerator, denominator)` terms.
-    fn poly_of(ids: &[AtomId], terms: &[(Vec<u32>, i64, i64)]) -> Poly {
-        Poly::from_terms(
-            terms
-                .iter()
-                .filter_map(|(es, n, d)| {
-                    let pairs = ids.iter().copied().zip(es.iter().copied()).collect();
-                    Some((
-                        Mono::from_pairs(pairs)?,
-                        Q::new(BigInt::from(*n), BigInt::from(*d)),
-                    ))
-                })
-                .collect(),
-        )
-    }
+    use crate::normal::poly::from_exponents as poly_of;
 
     fn terms(atoms: usize) -> impl Strategy<Value = Vec<(Vec<u32>, i64, i64)>> {
         proptest::collection::vec(
