@@ -238,14 +238,50 @@ fn columns<T: Clone>(m: &[Vec<T>], n: usize, i: Option<usize>) -> (Vec<Vec<T>>, 
 /// when the matrix does not pack or an entry outgrows the packed form (the general
 /// path then runs). A singular `A` gives a zero determinant.
 ///
-/// One elimination of `[A | b]` serves them all: after `k` steps, an entry of column
-/// `j` depends only on the columns before `k` and on column `j`, so the state of the
-/// rows from `k` on, without column `k`, is the state the elimination for the numerator
-/// of `x_k` (columns `0..k`, then those after `k`, then `b`) reaches after its own `k`
-/// steps. That numerator takes it from there; only its last `n − k` steps are its own.
+/// One elimination of `[A | b]` serves them all. After it, `U x = b'` with `U` upper
+/// triangular and `D = U_{n−1,n−1}`, and each numerator can be had in one of two exact
+/// ways:
+///
+/// - by fraction-free back substitution, `num_i = (b'_i·D − Σ_{j>i} U_ij·num_j) / U_ii`;
+/// - by continuing the elimination: after `k` steps, an entry of column `j` depends only
+///   on the columns before `k` and on column `j`, so the state of the rows from `k` on,
+///   without column `k`, is the state the elimination for the numerator of `x_k`
+///   (columns `0..k`, then those after `k`, then `b`) reaches after its own `k` steps;
+///   that numerator takes it from there.
+///
+/// Neither is always cheaper: back substitution multiplies whole numerators by the
+/// entries of `U`, which are small in the first rows and large in the last of a generic
+/// matrix, and on the chain of rods continuing builds entries far larger than the
+/// elimination's own. Back substitution's work (term products, and the division's) is
+/// known from the sizes at hand before it is done; the continued elimination's is not.
+/// So each numerator, from the last, is first continued within that much work, and got
+/// by back substitution when the budget runs out: it costs at most about twice the
+/// cheaper way. Both give the same polynomial.
 fn packed_determinants(
     m: &[Vec<Poly>],
     n: usize,
+) -> Option<(packed::Ring, packed::P, Vec<packed::P>)> {
+    packed_determinants_by(m, n, Way::Cheaper)
+}
+
+/// How [`packed_determinants_by`] gets each numerator: the tests take each way alone.
+#[derive(Clone, Copy, Debug)]
+enum Way {
+    /// The continued elimination within back substitution's work, else back substitution.
+    Cheaper,
+    /// Back substitution (the continued elimination gets no budget).
+    #[cfg(test)]
+    Back,
+    /// The continued elimination, whatever it costs.
+    #[cfg(test)]
+    Continued,
+}
+
+/// [`packed_determinants`], each numerator got `way`.
+fn packed_determinants_by(
+    m: &[Vec<Poly>],
+    n: usize,
+    way: Way,
 ) -> Option<(packed::Ring, packed::P, Vec<packed::P>)> {
     let ring = packed::Ring::new(m)?;
     let mut m = m
@@ -254,47 +290,150 @@ fn packed_determinants(
         .collect::<Option<Vec<_>>>()?;
     let mut prev: packed::P = vec![(0, 1)];
     let mut negate = false;
-    let mut nums = Vec::with_capacity(n);
+    // Where the elimination for numerator k would start, the rows from k on as they
+    // were before step k: the pivot row stays in `m`, and the entries step k replaces in
+    // the others are kept here (rows after the pivot's swap), with the sign.
+    let mut replaced: Vec<(Vec<Vec<packed::P>>, bool)> = Vec::with_capacity(n);
     for k in 0..n {
         // The numerator of x_k: moving column k past the n − 1 − k after it.
-        let sign = negate != ((n - 1 - k) % 2 == 1);
-        nums.push(numerator_packed(&ring, m.get(k..)?, k + 1, sign, &prev)?);
+        let mut sign = negate != ((n - 1 - k) % 2 == 1);
         let Some(p) = pivot_row(&m, k, |e: &packed::P| e.len()) else {
             return Some((ring, Vec::new(), Vec::new()));
         };
         if p != k {
             m.swap(k, p);
             negate = !negate;
+            sign = !sign;
         }
-        bareiss_step_packed(&ring, &mut m, k, &prev)?;
-        prev = std::mem::take(&mut m[k][k]);
+        let mut old = Vec::with_capacity(n - 1 - k);
+        bareiss_step_packed(&ring, &mut m, k, &prev, &mut { u64::MAX }, Some(&mut old))?;
+        replaced.push((old, sign));
+        prev = m.get(k)?.get(k)?.clone();
     }
-    if negate {
-        for t in &mut prev {
-            t.1 = t.1.checked_neg()?;
+    // Numerators as back substitution gives them: of `U x = b'`, whose determinant is
+    // `prev`, the Cramer numerators negated when the rows were swapped an odd number of
+    // times. Continued eliminations give Cramer's: `frame` converts either way.
+    let frame = |mut p: packed::P| -> Option<packed::P> {
+        if negate {
+            for t in &mut p {
+                t.1 = t.1.checked_neg()?;
+            }
         }
+        Some(p)
+    };
+    let size = |p: &packed::P| p.len() as u64;
+    let mut nums: Vec<packed::P> = vec![Vec::new(); n];
+    for i in (0..n).rev() {
+        let row = m.get(i)?;
+        let (b, u) = (row.get(n)?, row.get(i)?);
+        if i + 1 == n {
+            nums[i] = b.clone();
+            continue;
+        }
+        // Back substitution's work, known before it is done: its term products, and for
+        // the exact division one product per term of the quotient (a numerator, about
+        // the determinant's size) and of the divisor.
+        let mut back = size(b).saturating_mul(size(&prev));
+        for j in i + 1..n {
+            back = back.saturating_add(size(row.get(j)?).saturating_mul(size(nums.get(j)?)));
+        }
+        if u.len() > 1 {
+            back = back.saturating_add(size(&prev).saturating_mul(size(u)));
+        }
+        // The continued elimination, whose work is not known before, may spend as much;
+        // past that, back substitution. Each numerator costs at most twice the cheaper.
+        let (old, sign) = replaced.get(i)?;
+        let rows: Vec<&[packed::P]> = std::iter::once(row.as_slice())
+            .chain(old.iter().map(Vec::as_slice))
+            .collect();
+        let last = match i {
+            0 => &vec![(0, 1)],
+            _ => m.get(i - 1)?.get(i - 1)?,
+        };
+        let mut budget = match way {
+            Way::Cheaper => back,
+            #[cfg(test)]
+            Way::Back => 0,
+            #[cfg(test)]
+            Way::Continued => u64::MAX,
+        };
+        nums[i] = match numerator_packed(&ring, &rows, i + 1, *sign, last, &mut budget)? {
+            Some(num) => frame(num)?,
+            None => {
+                let rest: Vec<(&packed::P, &packed::P)> = (i + 1..n)
+                    .map(|j| Some((row.get(j)?, nums.get(j)?)))
+                    .collect::<Option<_>>()?;
+                ring.back_substitute(b, &prev, &rest, u)?
+            }
+        };
     }
-    Some((ring, prev, nums))
+    let nums = nums.into_iter().map(frame).collect::<Option<Vec<_>>>()?;
+    Some((ring, frame(prev)?, nums))
 }
 
 /// Step `k` of Bareiss elimination on packed polynomials: every entry right of and
 /// below the pivot `(k, k)` becomes `(pivot·e − left·up) / prev`; column `k` below the
-/// pivot becomes zero.
+/// pivot becomes zero, each within `budget` ([`budgeted_entry`]); `Some(false)` when
+/// the budget does not cover the next entry. The entries replaced are pushed to
+/// `replaced` when given, a row each (full width, empty where nothing was replaced).
 fn bareiss_step_packed(
     ring: &packed::Ring,
     m: &mut [Vec<packed::P>],
     k: usize,
     prev: &packed::P,
-) -> Option<()> {
+    budget: &mut u64,
+    mut replaced: Option<&mut Vec<Vec<packed::P>>>,
+) -> Option<bool> {
     let (top, below) = m.split_at_mut(k + 1);
     let pivot_row = top.last()?;
     for row in below {
+        let mut old = Vec::new();
+        if replaced.is_some() {
+            old.resize_with(row.len(), Vec::new);
+        }
         for j in k + 1..row.len() {
-            row[j] = ring.bareiss_entry(&pivot_row[k], &row[j], &row[k], &pivot_row[j], prev)?;
+            let entry = (&pivot_row[k], &row[j], &row[k], &pivot_row[j]);
+            let Some(e) = budgeted_entry(ring, entry, prev, budget)? else {
+                return Some(false);
+            };
+            let was = std::mem::replace(&mut row[j], e);
+            if let Some(slot) = old.get_mut(j) {
+                *slot = was;
+            }
         }
         row[k] = Vec::new();
+        if let Some(kept) = replaced.as_deref_mut() {
+            kept.push(old);
+        }
     }
-    Some(())
+    Some(true)
+}
+
+/// One Bareiss entry `(a·b − c·d) / prev` within `budget`, whose work is counted as
+/// `packed_determinants` counts back substitution's: the term products, taken before
+/// they are made (`Some(None)`, with nothing spent, when the budget does not cover
+/// them), and for a divisor of several terms, its terms times the quotient's, taken
+/// after (down to zero).
+fn budgeted_entry(
+    ring: &packed::Ring,
+    (a, b, c, d): (&packed::P, &packed::P, &packed::P, &packed::P),
+    prev: &packed::P,
+    budget: &mut u64,
+) -> Option<Option<packed::P>> {
+    let size = |p: &packed::P| p.len() as u64;
+    let products = size(a)
+        .saturating_mul(size(b))
+        .saturating_add(size(c).saturating_mul(size(d)));
+    let Some(left) = budget.checked_sub(products) else {
+        return Some(None);
+    };
+    let e = ring.bareiss_entry(a, b, c, d, prev)?;
+    *budget = if prev.len() > 1 {
+        left.saturating_sub(size(&e).saturating_mul(size(prev)))
+    } else {
+        left
+    };
+    Some(Some(e))
 }
 
 /// The determinant of `rows` from column `first` on (the rest of `[A | b]` after `k`
@@ -304,17 +443,18 @@ fn bareiss_step_packed(
 /// takes the others.
 fn numerator_packed(
     ring: &packed::Ring,
-    rows: &[Vec<packed::P>],
+    rows: &[&[packed::P]],
     first: usize,
     negate: bool,
     prev: &packed::P,
-) -> Option<packed::P> {
-    let len = |r: &Vec<packed::P>| r.get(first).map_or(0, Vec::len);
+    budget: &mut u64,
+) -> Option<Option<packed::P>> {
+    let len = |r: &[packed::P]| r.get(first).map_or(0, Vec::len);
     let Some(p) = (0..rows.len())
-        .filter(|&r| len(&rows[r]) > 0)
-        .min_by_key(|&r| len(&rows[r]))
+        .filter(|&r| len(rows[r]) > 0)
+        .min_by_key(|&r| len(rows[r]))
     else {
-        return Some(Vec::new());
+        return Some(Some(Vec::new()));
     };
     // The rows in the order a swap of rows 0 and p leaves them.
     let mut order: Vec<usize> = (0..rows.len()).collect();
@@ -325,31 +465,43 @@ fn numerator_packed(
         let row = rows.get(r)?;
         let mut out = Vec::with_capacity(row.len().saturating_sub(first + 1));
         for j in first + 1..row.len() {
-            out.push(ring.bareiss_entry(&pivot[first], &row[j], &row[first], &pivot[j], prev)?);
+            let entry = (&pivot[first], &row[j], &row[first], &pivot[j]);
+            let Some(e) = budgeted_entry(ring, entry, prev, budget)? else {
+                return Some(None);
+            };
+            out.push(e);
         }
         m.push(out);
     }
-    determinant_packed(ring, (m, negate != (p != 0)), pivot.get(first)?.clone())
+    determinant_packed(
+        ring,
+        (m, negate != (p != 0)),
+        pivot.get(first)?.clone(),
+        budget,
+    )
 }
 
 /// [`determinant`] on packed polynomials, continuing an elimination whose last pivot
-/// was `prev` (`1` for a fresh one).
+/// was `prev` (`1` for a fresh one), within `budget` (`Some(None)` past it).
 fn determinant_packed(
     ring: &packed::Ring,
     (mut m, negate): (Vec<Vec<packed::P>>, bool),
     mut prev: packed::P,
-) -> Option<packed::P> {
+    budget: &mut u64,
+) -> Option<Option<packed::P>> {
     let n = m.len();
     let mut negate = negate;
     for k in 0..n {
         let Some(p) = pivot_row(&m, k, |e: &packed::P| e.len()) else {
-            return Some(Vec::new());
+            return Some(Some(Vec::new()));
         };
         if p != k {
             m.swap(k, p);
             negate = !negate;
         }
-        bareiss_step_packed(ring, &mut m, k, &prev)?;
+        if !bareiss_step_packed(ring, &mut m, k, &prev, budget, None)? {
+            return Some(None);
+        }
         prev = std::mem::take(&mut m[k][k]);
     }
     if negate {
@@ -357,7 +509,7 @@ fn determinant_packed(
             t.1 = t.1.checked_neg()?;
         }
     }
-    Some(prev)
+    Some(Some(prev))
 }
 
 /// The row (from `k` down) with the shortest nonzero entry in column `k` (`len`: the
@@ -496,20 +648,23 @@ pub(super) mod tests {
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(300))]
 
-        /// The packed determinants are the general path's, term for term.
+        /// The packed determinants are the general path's, term for term, whichever way
+        /// the numerators are got (back substitution, continued elimination, the cheaper).
         #[test]
         fn packed_agrees_with_general(m in any_matrix()) {
             let n = m.len();
             let Ok((det, nums)) = general(&m) else {
                 return Err(TestCaseError::fail("the general path failed on a small matrix"));
             };
-            let packed = packed_determinants(&m, n);
-            prop_assert!(packed.is_some(), "small integer matrices pack");
-            let Some((ring, pdet, pnums)) = packed else { unreachable!() };
-            let (pdet, pnums) = (ring.unpack(&pdet), pnums.iter().map(|p| ring.unpack(p)).collect::<Vec<_>>());
-            prop_assert_eq!(&pdet, &det);
-            if !det.is_zero() {
-                prop_assert_eq!(pnums, nums);
+            for way in [Way::Cheaper, Way::Back, Way::Continued] {
+                let Some((ring, pdet, pnums)) = packed_determinants_by(&m, n, way) else {
+                    return Err(TestCaseError::fail(format!("small integer matrices pack ({way:?})")));
+                };
+                let pnums: Vec<Poly> = pnums.iter().map(|p| ring.unpack(p)).collect();
+                prop_assert_eq!(&ring.unpack(&pdet), &det, "{:?}", way);
+                if !det.is_zero() {
+                    prop_assert_eq!(&pnums, &nums, "{:?}", way);
+                }
             }
         }
 

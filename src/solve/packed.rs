@@ -221,6 +221,35 @@ impl Ring {
         }
     }
 
+    /// `(b·d − Σ u·x) / p` over the pairs `(u, x)` of `rest`: a step of fraction-free
+    /// back substitution, exact when `p` is the row's pivot and `d` the determinant
+    /// (Bareiss); `None` when a division is not exact, on overflow or past the term
+    /// limit.
+    pub(super) fn back_substitute(&self, b: &P, d: &P, rest: &[(&P, &P)], p: &P) -> Option<P> {
+        // Past this many term products the sum is taken pairwise by merges (as in
+        // `mul_sub`), where a table would leave the cache.
+        const TABLE_PRODUCTS: usize = 1 << 17;
+        let mut pairs: Vec<(Terms<'_>, Terms<'_>, bool)> = vec![(b, d, false)];
+        pairs.extend(rest.iter().map(|(u, x)| (u.as_slice(), x.as_slice(), true)));
+        let products = pairs
+            .iter()
+            .map(|t| t.0.len().saturating_mul(t.1.len()))
+            .fold(0usize, usize::saturating_add);
+        let t = if products <= TABLE_PRODUCTS {
+            sum_of_products(&pairs, d.len().saturating_mul(p.len()).min(products))?
+        } else {
+            let mut t = mul_sub(b, d, &[], &[])?;
+            for (u, x) in rest {
+                t = mul_sub(&t, &[(0, 1)], u, x)?;
+            }
+            t
+        };
+        match p.as_slice() {
+            [(mb, cb)] => self.div_by_term(t, *mb, *cb),
+            _ => self.div_exact(&t, p),
+        }
+    }
+
     /// `a / (cb·mb)` in place, `None` when a term is not divisible (as
     /// [`Ring::div_exact`] for a one-term divisor, without a new list); the
     /// coefficients are divided in machine words when they fit.
@@ -380,8 +409,17 @@ fn mul_sub(
     if products > TABLE_PRODUCTS {
         return mul_sub_merged(a, b, c, d);
     }
-    let mut acc = Accumulator::new(a.len() + b.len() + c.len() + d.len());
-    for (x, y, negate) in [(a, b, false), (c, d, true)] {
+    sum_of_products(
+        &[(a, b, false), (c, d, true)],
+        a.len() + b.len() + c.len() + d.len(),
+    )
+}
+
+/// `Σ ±x·y` over `pairs` (`true`: subtracted), in one table sized for about `hint`
+/// terms (as [`mul_sub`]), `None` on overflow or past the term limit.
+fn sum_of_products(pairs: &[(Terms<'_>, Terms<'_>, bool)], hint: usize) -> Option<P> {
+    let mut acc = Accumulator::new(hint);
+    for &(x, y, negate) in pairs {
         if x.is_empty() || y.is_empty() {
             continue;
         }
