@@ -4,7 +4,7 @@
 
 use crate::calculus::{self, Body, IntError, Wrt};
 use crate::normal::atom::{self, Atom, AtomId};
-use crate::normal::subst::{depends_on, subst_atom, subst_atom_owned};
+use crate::normal::subst::{depends_on, subst_atom};
 use crate::normal::{func, trig, Assumptions, Limit, NormError, Rat, Sign};
 use crate::syntax::ast::{BinOp, Expr, ExprKind, Func, Reading, Span};
 use foldhash::{HashMap, HashSet};
@@ -573,15 +573,7 @@ impl<'a> Lowerer<'a> {
             return hi.sub(&lo).map_err(|e| err(sp, e));
         }
         let big_f = calculus::antiderivative_owned(fv, x, &s).map_err(|e| int_err(body.span, e))?;
-        let lo = subst_atom(&big_f, x, &a, self.signs());
-        // The antiderivative is given up to its upper value: a bound that is a symbol is
-        // renamed into it in place. The upper value's error, if any, is reported first.
-        let hi = subst_atom_owned(big_f, x, &b, self.signs()).map_err(|e| err(sp, e))?;
-        let lo = lo.map_err(|e| err(sp, e))?;
-        if lo.is_zero() {
-            return Ok(hi);
-        }
-        hi.sub(&lo).map_err(|e| err(sp, e))
+        calculus::between_bounds(big_f, x, &a, &b, self.signs()).map_err(|e| err(sp, e))
     }
 
     /// `int(f, B)`: the coordinates are bound, each with the sign its range gives.

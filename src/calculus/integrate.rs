@@ -311,15 +311,27 @@ fn tabular(k: u32, kind: Kind, u: &Rat, x: AtomId, s: &Assumptions) -> Result<Ra
 
 /// `∫_a^b f dx`.
 pub fn definite(f: &Rat, x: AtomId, a: &Rat, b: &Rat, s: &Assumptions) -> Result<Rat, IntError> {
-    let big_f = antiderivative(f, x, s)?;
-    let lo = subst_atom(&big_f, x, a, s)?;
-    // The antiderivative is not needed after its upper value: a bound that is a symbol
-    // is then renamed into it in place.
+    Ok(between_bounds(antiderivative(f, x, s)?, x, a, b, s)?)
+}
+
+/// `F(b) − F(a)` for an antiderivative `F` in `x` the caller gives up: `F` is not
+/// needed after its upper value, so a bound that is a symbol is renamed into it in
+/// place, and a zero lower value costs nothing. The upper value's error, if any, is
+/// reported first.
+pub fn between_bounds(
+    big_f: Rat,
+    x: AtomId,
+    a: &Rat,
+    b: &Rat,
+    s: &Assumptions,
+) -> Result<Rat, NormError> {
+    let lo = subst_atom(&big_f, x, a, s);
     let hi = subst_atom_owned(big_f, x, b, s)?;
+    let lo = lo?;
     if lo.is_zero() {
         return Ok(hi);
     }
-    Ok(hi.sub(&lo)?)
+    hi.sub(&lo)
 }
 
 #[cfg(test)]

@@ -7,5 +7,5 @@ pub mod time;
 
 pub use body::Body;
 pub use diff::{diff, diff_n, Wrt};
-pub use integrate::{antiderivative, antiderivative_owned, definite, IntError};
+pub use integrate::{antiderivative, antiderivative_owned, between_bounds, definite, IntError};
 pub use time::{at_instant, time_antiderivative};
