@@ -253,10 +253,11 @@ fn columns<T: Clone>(m: &[Vec<T>], n: usize, i: Option<usize>) -> (Vec<Vec<T>>, 
 /// entries of `U`, which are small in the first rows and large in the last of a generic
 /// matrix, and on the chain of rods continuing builds entries far larger than the
 /// elimination's own. Back substitution's work (term products, and the division's) is
-/// known from the sizes at hand before it is done; the continued elimination's is not.
-/// So each numerator, from the last, is first continued within that much work, and got
-/// by back substitution when the budget runs out: it costs at most about twice the
-/// cheaper way. Both give the same polynomial.
+/// known from the sizes at hand before it is done; the continued elimination's is not,
+/// but it is forecast from the rows done ([`Forecast`]). So each numerator, from the
+/// last, is continued within a budget (back substitution's work when the forecast says
+/// continuing is cheaper, a sixteenth of it otherwise), and got by back substitution
+/// when the budget runs out. Both give the same polynomial.
 fn packed_determinants(
     m: &[Vec<Poly>],
     n: usize,
@@ -267,7 +268,8 @@ fn packed_determinants(
 /// How [`packed_determinants_by`] gets each numerator: the tests take each way alone.
 #[derive(Clone, Copy, Debug)]
 enum Way {
-    /// The continued elimination within back substitution's work, else back substitution.
+    /// The continued elimination within the budget [`Forecast`] gives it, else back
+    /// substitution.
     Cheaper,
     /// Back substitution (the continued elimination gets no budget).
     #[cfg(test)]
@@ -294,6 +296,8 @@ fn packed_determinants_by(
     // were before step k: the pivot row stays in `m`, and the entries step k replaces in
     // the others are kept here (rows after the pivot's swap), with the sign.
     let mut replaced: Vec<(Vec<Vec<packed::P>>, bool)> = Vec::with_capacity(n);
+    // What the forward elimination has left of an unlimited budget: its work, after.
+    let mut forward = u64::MAX;
     for k in 0..n {
         // The numerator of x_k: moving column k past the n − 1 − k after it.
         let mut sign = negate != ((n - 1 - k) % 2 == 1);
@@ -306,7 +310,7 @@ fn packed_determinants_by(
             sign = !sign;
         }
         let mut old = Vec::with_capacity(n - 1 - k);
-        bareiss_step_packed(&ring, &mut m, k, &prev, &mut { u64::MAX }, Some(&mut old))?;
+        bareiss_step_packed(&ring, &mut m, k, &prev, &mut forward, Some(&mut old))?;
         replaced.push((old, sign));
         prev = m.get(k)?.get(k)?.clone();
     }
@@ -322,6 +326,7 @@ fn packed_determinants_by(
         Some(p)
     };
     let size = |p: &packed::P| p.len() as u64;
+    let mut forecast = Forecast::new(u64::MAX - forward);
     let mut nums: Vec<packed::P> = vec![Vec::new(); n];
     for i in (0..n).rev() {
         let row = m.get(i)?;
@@ -350,14 +355,18 @@ fn packed_determinants_by(
             0 => &vec![(0, 1)],
             _ => m.get(i - 1)?.get(i - 1)?,
         };
-        let mut budget = match way {
-            Way::Cheaper => back,
+        let expected = forecast.next(i);
+        let given = match way {
+            Way::Cheaper => forecast.budget(expected, back),
             #[cfg(test)]
             Way::Back => 0,
             #[cfg(test)]
             Way::Continued => u64::MAX,
         };
-        nums[i] = match numerator_packed(&ring, &rows, i + 1, *sign, last, &mut budget)? {
+        let mut budget = given;
+        let got = numerator_packed(&ring, &rows, i + 1, *sign, last, &mut budget)?;
+        forecast.record(expected, given - budget, got.is_some());
+        nums[i] = match got {
             Some(num) => frame(num)?,
             None => {
                 let rest: Vec<(&packed::P, &packed::P)> = (i + 1..n)
@@ -369,6 +378,70 @@ fn packed_determinants_by(
     }
     let nums = nums.into_iter().map(frame).collect::<Option<Vec<_>>>()?;
     Some((ring, frame(prev)?, nums))
+}
+
+/// The work of each numerator's continued elimination (term products, as
+/// [`budgeted_entry`] counts them), forecast before it is done.
+///
+/// From the last row up, each continued elimination is larger than the one before and
+/// of the same kind (a determinant of minors one order lower), and their work grows
+/// about geometrically: on the chain of rods, about twice per row, while back
+/// substitution's grows by 1.4. The next is forecast from the last two by their ratio
+/// (at least 1). The numerator of `x_0` continues nothing: it eliminates the original
+/// entries, as the forward elimination did, whose work forecasts it.
+///
+/// A forecast only spends the budget: a continued elimination forecast to cost no more
+/// than back substitution gets as much work as back substitution takes (at most about
+/// twice the cheaper way when the forecast is wrong), and one forecast to cost more gets
+/// a sixteenth of it, which finds the cheap ones the forecast missed at a small cost
+/// (at most about seventeen times the cheaper way).
+struct Forecast {
+    /// The work of the forward elimination, which forecasts row 0's.
+    forward: u64,
+    /// The work of the last two rows' continued eliminations, the latest first: as
+    /// measured when they ran to the end, else what is known of it (their budget, or
+    /// the forecast when that is more).
+    last: [Option<u64>; 2],
+}
+
+impl Forecast {
+    fn new(forward: u64) -> Forecast {
+        Forecast {
+            forward,
+            last: [None, None],
+        }
+    }
+
+    /// The work forecast for row `i`'s continued elimination (0: none known, try it).
+    fn next(&self, i: usize) -> u64 {
+        if i == 0 {
+            return self.forward;
+        }
+        match self.last {
+            [Some(c1), Some(c2)] if c2 > 0 && c1 > c2 => {
+                u64::try_from(u128::from(c1) * u128::from(c1) / u128::from(c2)).unwrap_or(u64::MAX)
+            }
+            [Some(c1), _] => c1,
+            [None, _] => 0,
+        }
+    }
+
+    /// The budget of a continued elimination forecast to cost `expected`, where back
+    /// substitution costs `back`.
+    fn budget(&self, expected: u64, back: u64) -> u64 {
+        if expected <= back {
+            back
+        } else {
+            back / 16
+        }
+    }
+
+    /// What row's continued elimination turned out: `spent` of a budget, to the end
+    /// (`done`) or not.
+    fn record(&mut self, expected: u64, spent: u64, done: bool) {
+        let cost = if done { spent } else { spent.max(expected) };
+        self.last = [Some(cost), self.last[0]];
+    }
 }
 
 /// Step `k` of Bareiss elimination on packed polynomials: every entry right of and
@@ -643,6 +716,35 @@ pub(super) mod tests {
             .map(|i| determinant(columns(m, n, Some(i))))
             .collect::<Result<Vec<Poly>, LinearError>>()?;
         Ok((det, nums))
+    }
+
+    /// The forecast grows by the ratio of the last two rows' work (at least 1), takes
+    /// what a row that ran out of budget is known to cost, forecasts row 0 by the
+    /// forward elimination, and gives a continued elimination forecast dearer than back
+    /// substitution only a sixteenth of its work.
+    #[test]
+    fn forecast_extrapolates_the_work_of_the_rows_done() {
+        let mut f = Forecast::new(2142);
+        assert_eq!(f.next(6), 0, "nothing known: try it");
+        assert_eq!(f.budget(0, 638), 638);
+        f.record(0, 382, true);
+        assert_eq!(f.next(5), 382);
+        f.record(382, 1304, true);
+        // 1304 · 1304 / 382
+        assert_eq!(f.next(4), 4451);
+        assert_eq!(f.budget(4451, 2510), 156);
+        // Ran out of its sixteenth: known to cost at least the forecast.
+        f.record(4451, 150, false);
+        assert_eq!(f.next(3), 4451 * 4451 / 1304);
+        assert_eq!(f.next(0), 2142);
+        // Work that fell: the next is forecast as the last, not lower.
+        let mut f = Forecast::new(0);
+        f.record(0, 900, true);
+        f.record(900, 300, true);
+        assert_eq!(f.next(1), 300);
+        // Ran out of a budget larger than its forecast: at least what it spent.
+        f.record(100, 700, false);
+        assert_eq!(f.next(1), 700 * 700 / 300);
     }
 
     proptest! {
