@@ -163,9 +163,9 @@ impl Ring {
                     if den < 0 {
                         (n, den) = (n.checked_neg()?, -den);
                     }
-                    Q::new_raw(BigInt::from(n), BigInt::from(den))
+                    Q::new_raw(big(n), big(den))
                 }
-                None => Q::new(BigInt::from(c), kappa.clone()),
+                None => Q::new(big(c), kappa.clone()),
             };
             terms.push((m, q));
         }
@@ -207,7 +207,7 @@ impl Ring {
     pub(super) fn unpack(&self, p: &P) -> Poly {
         Poly::from_sorted_terms(
             p.iter()
-                .map(|&(k, c)| (self.unpack_mono(k), Q::from_integer(BigInt::from(c))))
+                .map(|&(k, c)| (self.unpack_mono(k), Q::from_integer(big(c))))
                 .collect(),
         )
     }
@@ -368,14 +368,30 @@ impl Ring {
 }
 
 /// The greatest common divisor of two integers, positive (`b` nonzero, neither
-/// `i128::MIN`).
+/// `i128::MIN`): in 64-bit words once both fit (a division of 128-bit words is a call).
 fn gcd_i128(a: i128, b: i128) -> i128 {
     let (mut a, mut b) = (a.unsigned_abs(), b.unsigned_abs());
     while b != 0 {
+        if let (Ok(x), Ok(y)) = (u64::try_from(a), u64::try_from(b)) {
+            let (mut x, mut y) = (x, y);
+            while y != 0 {
+                (x, y) = (y, x % y);
+            }
+            return i128::from(x);
+        }
         (a, b) = (b, a % b);
     }
     // At most |b| ≤ i128::MAX.
     a as i128
+}
+
+/// `v` as a big integer, built from one word when it fits one (the general conversion
+/// from `i128` builds two words and trims one).
+fn big(v: i128) -> BigInt {
+    match i64::try_from(v) {
+        Ok(w) => BigInt::from(w),
+        Err(_) => BigInt::from(v),
+    }
 }
 
 /// The product, `None` on overflow or past the term limit.
@@ -650,6 +666,21 @@ mod tests {
     }
 
     proptest! {
+        /// The gcd of two machine integers is the big integers' gcd (positive), in
+        /// 128-bit and in 64-bit words; `big` keeps the value.
+        #[test]
+        fn word_gcd_is_the_gcd(a in any::<i128>(), b in any::<i128>(), shift in 0u32..127) {
+            use num_integer::Integer;
+            for (a, b) in [(a, b), (a >> shift, b >> shift), (a >> 70, b >> 70)] {
+                if b == 0 || a == i128::MIN || b == i128::MIN {
+                    continue;
+                }
+                let want = BigInt::from(a).gcd(&BigInt::from(b));
+                prop_assert_eq!(BigInt::from(gcd_i128(a, b)), want);
+                prop_assert_eq!(big(a), BigInt::from(a));
+            }
+        }
+
         /// The word-wide quotient is the field-by-field one: `Some` exactly when every
         /// exponent of `b` is at most `a`'s and the difference is within the bound.
         #[test]
