@@ -285,9 +285,17 @@ impl Poly {
         if q.is_zero() {
             return Ok(Poly::zero());
         }
+        // By a monomial alone (the common case), the coefficients are copied, not
+        // multiplied and reduced.
+        let one = q.is_one();
         let mut terms = Vec::with_capacity(self.terms.len());
         for (n, c) in &self.terms {
-            terms.push((n.mul(m).ok_or(Limit::Exponent)?, super::qops::mul(c, q)));
+            let c = if one {
+                c.clone()
+            } else {
+                super::qops::mul(c, q)
+            };
+            terms.push((n.mul(m).ok_or(Limit::Exponent)?, c));
         }
         // Multiplying by a monomial preserves a monomial order.
         Ok(Poly { terms })
