@@ -399,8 +399,8 @@ struct Forecast {
     /// The work of the forward elimination, which forecasts row 0's.
     forward: u64,
     /// The work of the last two rows' continued eliminations, the latest first: as
-    /// measured when they ran to the end, else what is known of it (their budget, or
-    /// the forecast when that is more).
+    /// measured when they ran to the end, else what is known of it (what they spent
+    /// before the budget ran out, or the forecast when that is more).
     last: [Option<u64>; 2],
 }
 
