@@ -727,6 +727,7 @@ pub(super) mod tests {
         let mut f = Forecast::new(2142);
         assert_eq!(f.next(6), 0, "nothing known: try it");
         assert_eq!(f.budget(0, 638), 638);
+        assert_eq!(f.budget(638, 638), 638, "no dearer: the whole budget");
         f.record(0, 382, true);
         assert_eq!(f.next(5), 382);
         f.record(382, 1304, true);
