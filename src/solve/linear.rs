@@ -277,6 +277,10 @@ enum Way {
     /// The continued elimination, whatever it costs.
     #[cfg(test)]
     Continued,
+    /// The continued elimination within back substitution's work, else back
+    /// substitution, whatever the forecast: the choice before there was one.
+    #[cfg(test)]
+    WithinBack,
 }
 
 /// [`packed_determinants`], each numerator got `way`.
@@ -362,10 +366,17 @@ fn packed_determinants_by(
             Way::Back => 0,
             #[cfg(test)]
             Way::Continued => u64::MAX,
+            #[cfg(test)]
+            Way::WithinBack => back,
         };
         let mut budget = given;
         let got = numerator_packed(&ring, &rows, i + 1, *sign, last, &mut budget)?;
         forecast.record(expected, given - budget, got.is_some());
+        #[cfg(test)]
+        tests::WORK.with(|w| {
+            let fallback = if got.is_some() { 0 } else { back };
+            w.set(w.get() + (given - budget) + fallback);
+        });
         nums[i] = match got {
             Some(num) => frame(num)?,
             None => {
@@ -708,6 +719,57 @@ pub(super) mod tests {
         })
     }
 
+    thread_local! {
+        /// The work (term products) the numerators of the last packed solve on this
+        /// thread took: continued eliminations, and back substitutions where used.
+        pub(super) static WORK: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+    }
+
+    /// The chain of rods of `n` links (WORKLOADS.md's W3.chain, lengths 1), six times
+    /// its mass matrix (integer coefficients) with the generalized forces on the right,
+    /// its columns in the order `solve` eliminates them.
+    fn chain_of_rods(n: u32) -> Vec<Vec<Poly>> {
+        let mass = |k: u32, c: i64| (vec![(k, 1)], c);
+        let mut m: Vec<Vec<Poly>> = (0..n)
+            .map(|i| {
+                let mut row: Vec<Poly> = (0..n)
+                    .map(|j| {
+                        let (k, own) = if i == j { (i, 2) } else { (i.max(j), 3) };
+                        let mut t = vec![mass(k, own)];
+                        t.extend((k + 1..n).map(|h| mass(h, 6)));
+                        poly(&t)
+                    })
+                    .collect();
+                row.push(poly(&[(vec![(n + i, 1)], 1)]));
+                row
+            })
+            .collect();
+        if eliminate_reversed(&m, n as usize) {
+            for row in m.iter_mut() {
+                row[..n as usize].reverse();
+            }
+        }
+        m
+    }
+
+    /// On the chain of rods the forecast takes less work for the numerators than either
+    /// way alone (continuing wins in some rows, back substitution in others), and less
+    /// than trying every continued elimination within back substitution's work.
+    #[test]
+    fn the_forecast_takes_less_work_than_either_way_alone() {
+        let m = chain_of_rods(7);
+        let work = |way: Way| {
+            WORK.with(|w| w.set(0));
+            assert!(packed_determinants_by(&m, 7, way).is_some(), "{way:?}");
+            WORK.with(|w| w.get())
+        };
+        let cheaper = work(Way::Cheaper);
+        for way in [Way::Back, Way::Continued, Way::WithinBack] {
+            let other = work(way);
+            assert!(cheaper < other, "forecast {cheaper}, {way:?} {other}");
+        }
+    }
+
     /// Cramer's numerators and `det A` by the general (unpacked) path.
     fn general(m: &[Vec<Poly>]) -> Result<(Poly, Vec<Poly>), LinearError> {
         let n = m.len();
@@ -759,7 +821,7 @@ pub(super) mod tests {
             let Ok((det, nums)) = general(&m) else {
                 return Err(TestCaseError::fail("the general path failed on a small matrix"));
             };
-            for way in [Way::Cheaper, Way::Back, Way::Continued] {
+            for way in [Way::Cheaper, Way::Back, Way::Continued, Way::WithinBack] {
                 let Some((ring, pdet, pnums)) = packed_determinants_by(&m, n, way) else {
                     return Err(TestCaseError::fail(format!("small integer matrices pack ({way:?})")));
                 };
