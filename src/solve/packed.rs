@@ -215,10 +215,7 @@ impl Ring {
     /// `(a·b − c·d) / prev`, `None` on overflow, a term limit, or an inexact division.
     pub(super) fn bareiss_entry(&self, a: &P, b: &P, c: &P, d: &P, prev: &P) -> Option<P> {
         let t = mul_sub(a, b, c, d)?;
-        match prev.as_slice() {
-            [(mb, cb)] => self.div_by_term(t, *mb, *cb),
-            _ => self.div_exact(&t, prev),
-        }
+        self.div_exact(t, prev)
     }
 
     /// `(b·d − Σ u·x) / p` over the pairs `(u, x)` of `rest`: a step of fraction-free
@@ -244,15 +241,11 @@ impl Ring {
             }
             t
         };
-        match p.as_slice() {
-            [(mb, cb)] => self.div_by_term(t, *mb, *cb),
-            _ => self.div_exact(&t, p),
-        }
+        self.div_exact(t, p)
     }
 
-    /// `a / (cb·mb)` in place, `None` when a term is not divisible (as
-    /// [`Ring::div_exact`] for a one-term divisor, without a new list); the
-    /// coefficients are divided in machine words when they fit.
+    /// `a / (cb·mb)` in place, `None` when a term is not divisible; the coefficients are
+    /// divided in machine words when they fit.
     fn div_by_term(&self, mut a: P, mb: u128, cb: i128) -> Option<P> {
         if mb != 0 {
             for t in &mut a {
@@ -289,50 +282,17 @@ impl Ring {
         Some(a)
     }
 
-    /// `a / b` when `b` divides `a` with every quotient exponent within the bound.
-    fn div_exact(&self, a: &P, b: &P) -> Option<P> {
+    /// `a / b` when `b` divides `a` with every quotient exponent within the bound: by
+    /// [`Ring::div_by_term`] for a one-term divisor, else term by term from the top.
+    fn div_exact(&self, a: P, b: &P) -> Option<P> {
         if a.is_empty() {
-            return Some(Vec::new());
+            return Some(a);
         }
         let (&(mb, cb), rest) = b.split_last()?;
         if rest.is_empty() {
-            // A monomial divisor (1 included): term by term, with no division of the
-            // coefficients by ±1 and a machine-word one when both fit 64 bits.
-            if cb == 1 || cb == -1 {
-                return a
-                    .iter()
-                    .map(|&(m, c)| {
-                        Some((
-                            self.div_mono(m, mb)?,
-                            if cb == 1 { c } else { c.checked_neg()? },
-                        ))
-                    })
-                    .collect();
-            }
-            if let Ok(cb) = i64::try_from(cb) {
-                let small = |c: i128| i64::try_from(c).ok();
-                if a.iter().all(|t| small(t.1).is_some()) {
-                    return a
-                        .iter()
-                        .map(|&(m, c)| {
-                            let c = small(c)?;
-                            // checked: i64::MIN / −1 overflows.
-                            (c.checked_rem(cb)? == 0).then_some(())?;
-                            Some((self.div_mono(m, mb)?, i128::from(c.checked_div(cb)?)))
-                        })
-                        .collect();
-                }
-            }
-            return a
-                .iter()
-                .map(|&(m, c)| {
-                    // checked: i128::MIN / −1 overflows.
-                    (c.checked_rem(cb)? == 0).then_some(())?;
-                    Some((self.div_mono(m, mb)?, c.checked_div(cb)?))
-                })
-                .collect();
+            return self.div_by_term(a, mb, cb);
         }
-        let mut r: BTreeMap<u128, i128> = a.iter().copied().collect();
+        let mut r: BTreeMap<u128, i128> = a.into_iter().collect();
         let mut q: P = Vec::new();
         while let Some((mr, cr)) = r.pop_last() {
             let m = self.div_mono(mr, mb)?;
